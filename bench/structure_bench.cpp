@@ -1,0 +1,31 @@
+// Cost of building the T8036 structure and of its lowest modes (ARPACK shift-invert + CHOLMOD).
+#include <benchmark/benchmark.h>
+
+#include "crane_twin/modal_analysis.hpp"
+#include "crane_twin/tower_crane_structure.hpp"
+
+using namespace crane_twin;
+
+namespace {
+const std::string kCrane = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/cranes/t8036.yaml";
+}
+
+static void BM_T8036Build(benchmark::State& state) {
+  const CraneDescription c = loadCraneDescription(kCrane);
+  for (auto _ : state) {
+    auto s = TowerCraneStructure::build(c);
+    benchmark::DoNotOptimize(s.K.nonZeros());
+  }
+}
+BENCHMARK(BM_T8036Build)->Unit(benchmark::kMillisecond);
+
+static void BM_T8036Modes(benchmark::State& state) {
+  const TowerCraneStructure s = TowerCraneStructure::build(loadCraneDescription(kCrane));
+  ModalOptions opt;
+  opt.count = static_cast<int>(state.range(0));
+  for (auto _ : state) {
+    auto b = lowestModes(s.K, s.M, opt);
+    benchmark::DoNotOptimize(b.omega2.data());
+  }
+}
+BENCHMARK(BM_T8036Modes)->Arg(10)->Arg(100)->ArgName("modes")->Unit(benchmark::kMillisecond);

@@ -1,0 +1,171 @@
+#include "crane_twin/ancf_cable_element.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace crane_twin {
+
+void gaussLegendre01(int n, Eigen::VectorXd& points, Eigen::VectorXd& weights) {
+  if (n < 1 || n > 10) {
+    throw std::invalid_argument("gauss points must be in 1..10, got " + std::to_string(n));
+  }
+  // Newton iteration on the Legendre polynomial P_n from the Chebyshev guess; converges to
+  // machine precision in a handful of iterations for n <= 10.
+  points.resize(n);
+  weights.resize(n);
+  for (int i = 0; i < n; ++i) {
+    double x = std::cos(M_PI * (i + 0.75) / (n + 0.5));
+    double dp = 0.0;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1.0, p1 = x;
+      for (int k = 2; k <= n; ++k) {
+        const double p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+        p0 = p1;
+        p1 = p2;
+      }
+      const double pn = (n == 1) ? x : p1;
+      const double pnm1 = (n == 1) ? 1.0 : p0;
+      dp = n * (x * pn - pnm1) / (x * x - 1.0);
+      const double dx = pn / dp;
+      x -= dx;
+      if (std::abs(dx) < 1e-16) break;
+    }
+    points(i) = 0.5 * (1.0 - x);
+    weights(i) = 1.0 / ((1.0 - x * x) * dp * dp);  // 2/((1-x^2)P'^2) scaled by 1/2
+  }
+}
+
+Eigen::Vector4d ancfShape(double xi, double l) {
+  const double x2 = xi * xi, x3 = x2 * xi;
+  return {1.0 - 3.0 * x2 + 2.0 * x3, l * (xi - 2.0 * x2 + x3), 3.0 * x2 - 2.0 * x3,
+          l * (x3 - x2)};
+}
+
+Eigen::Vector4d ancfShapeDx(double xi, double l) {
+  const double x2 = xi * xi;
+  return {(-6.0 * xi + 6.0 * x2) / l, 1.0 - 4.0 * xi + 3.0 * x2, (6.0 * xi - 6.0 * x2) / l,
+          3.0 * x2 - 2.0 * xi};
+}
+
+Eigen::Vector4d ancfShapeDxx(double xi, double l) {
+  return {(-6.0 + 12.0 * xi) / (l * l), (-4.0 + 6.0 * xi) / l, (6.0 - 12.0 * xi) / (l * l),
+          (6.0 * xi - 2.0) / l};
+}
+
+namespace {
+
+// v = sum_k s(k) * e.segment<3>(3k)
+Eigen::Vector3d combine(const Eigen::Vector4d& s, const Vector12& e) {
+  return s(0) * e.segment<3>(0) + s(1) * e.segment<3>(3) + s(2) * e.segment<3>(6) +
+         s(3) * e.segment<3>(9);
+}
+
+// K += w * Sa^T H Sb where Sa = [sa_k I], Sb = [sb_k I] and H is 3x3.
+void addOuter(const Eigen::Vector4d& sa, const Eigen::Vector4d& sb, const Eigen::Matrix3d& H,
+              double w, Matrix12& K) {
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) K.block<3, 3>(3 * i, 3 * j) += (w * sa(i) * sb(j)) * H;
+}
+
+// Q += w * Sa^T v
+void addVec(const Eigen::Vector4d& sa, const Eigen::Vector3d& v, double w, Vector12& Q) {
+  for (int i = 0; i < 4; ++i) Q.segment<3>(3 * i) += (w * sa(i)) * v;
+}
+
+}  // namespace
+
+Eigen::Vector3d ancfPosition(const Vector12& e, double xi, double l) {
+  return combine(ancfShape(xi, l), e);
+}
+
+Matrix12 ancfMassMatrix(const AncfCableProperties& p) {
+  Eigen::VectorXd xg, wg;
+  gaussLegendre01(4, xg, wg);  // S^T S is a degree-6 polynomial: exact
+  Matrix12 M = Matrix12::Zero();
+  for (int g = 0; g < xg.size(); ++g) {
+    const Eigen::Vector4d s = ancfShape(xg(g), p.length);
+    addOuter(s, s, Eigen::Matrix3d::Identity(), wg(g) * p.length * p.mass_per_length, M);
+  }
+  return M;
+}
+
+Vector12 ancfGravityForce(const AncfCableProperties& p, const Eigen::Vector3d& g) {
+  // int S dx = l [1/2, l/12, 1/2, -l/12]
+  const double l = p.length, m = p.mass_per_length;
+  Vector12 f;
+  f << 0.5 * l * g, l * l / 12.0 * g, 0.5 * l * g, -l * l / 12.0 * g;
+  return m * f;
+}
+
+void ancfStrainCurvature(const Vector12& e, double xi, double l, double& eps, double& kappa) {
+  const Eigen::Vector3d a = combine(ancfShapeDx(xi, l), e);
+  const Eigen::Vector3d b = combine(ancfShapeDxx(xi, l), e);
+  const double g = a.norm();
+  eps = g - 1.0;
+  kappa = a.cross(b).norm() / (g * g * g);
+}
+
+double ancfElasticEnergy(const AncfCableProperties& p, const Vector12& e) {
+  Eigen::VectorXd xg, wg;
+  gaussLegendre01(p.gauss_points, xg, wg);
+  double U = 0.0;
+  for (int q = 0; q < xg.size(); ++q) {
+    double eps, kappa;
+    ancfStrainCurvature(e, xg(q), p.length, eps, kappa);
+    U += wg(q) * p.length * 0.5 *
+         (p.axial_stiffness * eps * eps + p.bending_stiffness * kappa * kappa);
+  }
+  return U;
+}
+
+void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12& Q,
+                      Matrix12* K) {
+  Eigen::VectorXd xg, wg;
+  gaussLegendre01(p.gauss_points, xg, wg);
+  Q.setZero();
+  if (K) K->setZero();
+  const double EA = p.axial_stiffness, EI = p.bending_stiffness, l = p.length;
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  for (int q = 0; q < xg.size(); ++q) {
+    const double w = wg(q) * l;
+    const Eigen::Vector4d sx = ancfShapeDx(xg(q), l);
+    const Eigen::Vector4d sxx = ancfShapeDxx(xg(q), l);
+    const Eigen::Vector3d a = combine(sx, e);   // r_x
+    const Eigen::Vector3d b = combine(sxx, e);  // r_xx
+    const double h = a.squaredNorm();
+    const double g = std::sqrt(h);
+
+    // Axial: phi = EA/2 (g - 1)^2; phi_a = EA (1 - 1/g) a;
+    // phi_aa = EA [(1 - 1/g) I + a a^T / g^3].
+    addVec(sx, EA * (1.0 - 1.0 / g) * a, w, Q);
+    if (K) addOuter(sx, sx, EA * ((1.0 - 1.0 / g) * I3 + a * a.transpose() / (h * g)), w, *K);
+
+    if (EI == 0.0) continue;
+    // Bending: phi = EI/2 f h^-3, f = |a x b|^2 = (a.a)(b.b) - (a.b)^2, h = a.a.
+    const double ab = a.dot(b), bb = b.dot(b);
+    const double f = h * bb - ab * ab;
+    const Eigen::Vector3d fa = 2.0 * bb * a - 2.0 * ab * b;
+    const Eigen::Vector3d fb = 2.0 * h * b - 2.0 * ab * a;
+    const Eigen::Vector3d ha = 2.0 * a;
+    const double h3 = 1.0 / (h * h * h), h4 = h3 / h, h5 = h4 / h;
+    const double c = 0.5 * EI;
+    addVec(sx, c * (fa * h3 - 3.0 * f * h4 * ha), w, Q);
+    addVec(sxx, c * fb * h3, w, Q);
+    if (!K) continue;
+    const Eigen::Matrix3d faa = 2.0 * bb * I3 - 2.0 * b * b.transpose();
+    const Eigen::Matrix3d fbb = 2.0 * h * I3 - 2.0 * a * a.transpose();
+    const Eigen::Matrix3d fab = 4.0 * a * b.transpose() - 2.0 * b * a.transpose() - 2.0 * ab * I3;
+    const Eigen::Matrix3d paa =
+        c * (faa * h3 - 3.0 * h4 * (fa * ha.transpose() + ha * fa.transpose()) +
+             12.0 * f * h5 * ha * ha.transpose() - 6.0 * f * h4 * I3);
+    const Eigen::Matrix3d pab = c * (fab * h3 - 3.0 * h4 * ha * fb.transpose());
+    const Eigen::Matrix3d pbb = c * fbb * h3;
+    addOuter(sx, sx, paa, w, *K);
+    addOuter(sx, sxx, pab, w, *K);
+    addOuter(sxx, sx, pab.transpose(), w, *K);
+    addOuter(sxx, sxx, pbb, w, *K);
+  }
+}
+
+}  // namespace crane_twin

@@ -1,0 +1,92 @@
+// crane_sim as a user runs it: output formats of SPEC 3.1 and exit codes.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <vector>
+
+namespace {
+
+struct Result {
+  int status;
+  std::string out;
+};
+
+// Run crane_sim with arguments; stderr is merged into the captured output.
+Result run(const std::string& args) {
+  const std::string cmd = std::string(CRANE_SIM_EXE) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  std::string out;
+  std::array<char, 4096> buf;
+  while (p && fgets(buf.data(), buf.size(), p)) out += buf.data();
+  const int st = p ? pclose(p) : -1;
+  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+std::vector<std::string> lines(const std::string& s) {
+  std::vector<std::string> v;
+  std::istringstream in(s);
+  for (std::string l; std::getline(in, l);) v.push_back(l);
+  return v;
+}
+
+const std::string kScene = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_combination1.yaml";
+
+}  // namespace
+
+TEST(CraneSimCli, InfoPrintsTheSpecKeysInOrder) {
+  const Result r = run("info " + kScene);
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto l = lines(r.out);
+  const char* keys[] = {"structure_nodes", "structure_elements", "structure_dofs", "structure_mass",
+                        "rope_elements",   "rope_dofs",          "rope_mass"};
+  ASSERT_GE(l.size(), 7u);
+  for (int i = 0; i < 7; ++i) EXPECT_EQ(l[i].substr(0, l[i].find(',')), keys[i]);
+  EXPECT_EQ(l[4], "rope_elements,120");
+  EXPECT_EQ(l[5], "rope_dofs,726");
+  // 2 falls x 1.9 kg/m x 60 m.
+  EXPECT_NEAR(std::stod(l[6].substr(l[6].find(',') + 1)), 228.0, 1e-9);
+}
+
+TEST(CraneSimCli, InfoHonoursOverrides) {
+  const Result r = run("info " + kScene + " --set rope.elements=40");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("rope_elements,40\n"), std::string::npos);
+  EXPECT_NE(r.out.find("rope_dofs,246\n"), std::string::npos);
+}
+
+TEST(CraneSimCli, StructureModesFormat) {
+  const Result r = run("modes " + kScene + " --part structure --count 10");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto l = lines(r.out);
+  ASSERT_EQ(l.size(), 11u) << r.out;
+  EXPECT_EQ(l[0], "index,frequency_hz");
+  double prev = 0.0;
+  for (int i = 1; i <= 10; ++i) {
+    EXPECT_EQ(std::stoi(l[i].substr(0, l[i].find(','))), i);
+    const double f = std::stod(l[i].substr(l[i].find(',') + 1));
+    EXPECT_GE(f, prev);
+    prev = f;
+  }
+}
+
+TEST(CraneSimCli, BadInputExitsWithTwoAndNamesTheKey) {
+  Result r = run("info " + kScene + " --set rope.elements=0");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("rope.elements"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("t8036_combination1.yaml"), std::string::npos) << r.out;
+  r = run("info /nonexistent/scene.yaml");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("/nonexistent/scene.yaml"), std::string::npos) << r.out;
+  r = run("modes " + kScene + " --count 0");
+  EXPECT_EQ(r.status, 2) << r.out;
+  r = run("modes " + kScene + " --part hull");
+  EXPECT_EQ(r.status, 2) << r.out;
+  r = run("frobnicate");
+  EXPECT_EQ(r.status, 2) << r.out;
+  r = run("");
+  EXPECT_EQ(r.status, 2) << r.out;
+}

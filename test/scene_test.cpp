@@ -1,0 +1,145 @@
+// Scene loader validation (SPEC 2): each malformed input class is refused with a message that
+// names the file and the key.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "crane_twin/config_reader.hpp"
+#include "crane_twin/scene.hpp"
+
+using namespace crane_twin;
+
+namespace {
+
+const std::string kScenes = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/";
+
+// Write a scene into the test's temporary folder and return its path.
+std::string writeScene(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + "crane_twin_scene_" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+const char* kGood = R"(crane: none
+anchor: [0, 0, 0]
+duration: 1.0
+time_step: 0.01
+rope: {model: full, elements: 10, length: 20.0, falls: 1}
+payload: {mass: 100.0}
+initial: {mode: stress_free, swing_deg: 5.0}
+)";
+
+// Expect loadScene(path, overrides) to throw an InputError whose message contains each needle.
+void expectRefused(const std::string& path, const std::vector<std::string>& overrides,
+                   const std::vector<std::string>& needles) {
+  try {
+    loadScene(path, overrides);
+    FAIL() << "expected InputError for overrides " << ::testing::PrintToString(overrides);
+  } catch (const InputError& e) {
+    for (const auto& n : needles) {
+      EXPECT_NE(std::string(e.what()).find(n), std::string::npos)
+          << "message '" << e.what() << "' lacks '" << n << "'";
+    }
+  }
+}
+
+}  // namespace
+
+TEST(Scene, ShippedPaperScenesLoad) {
+  for (const char* name : {"t8036_combination1", "t8036_combination1_3deg", "t8036_combination2",
+                           "t8036_combination2_3deg", "rope_pendulum_chrono"}) {
+    const Scene s = loadScene(kScenes + name + ".yaml");
+    EXPECT_GT(s.duration, 0.0) << name;
+  }
+  const Scene c1 = loadScene(kScenes + "t8036_combination1.yaml");
+  ASSERT_TRUE(c1.crane.has_value());
+  EXPECT_DOUBLE_EQ(c1.trolley_radius, 80.0);
+  EXPECT_DOUBLE_EQ(c1.payload_mass, 3600.0);
+  EXPECT_DOUBLE_EQ(c1.hookBlockMass(), 2044.0);
+  EXPECT_DOUBLE_EQ(c1.rope.mass_per_length, 1.9);  // default from the crane file
+  const Scene c2 = loadScene(kScenes + "t8036_combination2.yaml");
+  EXPECT_DOUBLE_EQ(c2.trolley_radius, 32.8);
+  EXPECT_DOUBLE_EQ(c2.payload_mass, 12500.0);
+}
+
+TEST(Scene, DefaultsAndOverrides) {
+  const std::string p = writeScene("good.yaml", kGood);
+  const Scene s = loadScene(p, {"rope.elements=40", "initial.payload_velocity=[0,0,3]"});
+  EXPECT_EQ(s.rope.elements, 40);
+  EXPECT_DOUBLE_EQ(s.payload_velocity.z(), 3.0);
+  EXPECT_EQ(s.integrator, "generalized_alpha");
+  EXPECT_DOUBLE_EQ(s.rho_inf, 0.9);
+  EXPECT_EQ(s.structure_model, "rigid");
+  EXPECT_DOUBLE_EQ(s.rope.axial_stiffness, 2.2e7);
+}
+
+TEST(Scene, WrongTypeIsRefused) {
+  const std::string p = writeScene("good.yaml", kGood);
+  expectRefused(p, {"rope.elements=abc"}, {p, "rope.elements", "integer"});
+  expectRefused(p, {"duration=[1,2]"}, {p, "duration", "number"});
+  expectRefused(p, {"rope.bending=maybe"}, {p, "rope.bending", "true or false"});
+  expectRefused(p, {"rope=5"}, {p, "rope", "map"});
+  expectRefused(p, {"initial.payload_velocity=[0,0]"}, {p, "initial.payload_velocity", "3 numbers"});
+  expectRefused(p, {"rope.elements=2.5"}, {p, "rope.elements"});
+}
+
+TEST(Scene, OutOfRangeIsRefused) {
+  const std::string p = writeScene("good.yaml", kGood);
+  expectRefused(p, {"payload.mass=-1"}, {p, "payload.mass", ">= 0", "-1"});
+  expectRefused(p, {"rope.elements=0"}, {p, "rope.elements", "0"});
+  expectRefused(p, {"rope.mode_fraction=0"}, {p, "rope.mode_fraction", "(0, 1]"});
+  expectRefused(p, {"rope.mode_fraction=1.5"}, {p, "rope.mode_fraction", "1.5"});
+  expectRefused(p, {"time_step=0"}, {p, "time_step"});
+  expectRefused(p, {"time_step=.nan"}, {p, "time_step"});
+  expectRefused(p, {"duration=.inf"}, {p, "duration"});
+  expectRefused(p, {"integrator.rho_inf=1.2"}, {p, "integrator.rho_inf"});
+  expectRefused(p, {"rope.model=ancf"}, {p, "rope.model", "pendulum, full, reduced"});
+  expectRefused(p, {"time_step=2"}, {p, "time_step", "duration"});
+}
+
+TEST(Scene, UnknownKeyIsRefused) {
+  const std::string p = writeScene("good.yaml", kGood);
+  expectRefused(p, {"rope.elemnts=10"}, {p, "rope.elemnts", "unknown key"});
+  expectRefused(p, {"wind=3"}, {p, "wind", "unknown key"});
+  expectRefused(p, {"payload.mass_kg=3"}, {p, "payload.mass_kg", "unknown key"});
+}
+
+TEST(Scene, MissingRequiredKeyIsRefused) {
+  const std::string p = writeScene("no_rope.yaml", "crane: none\nduration: 1\ntime_step: 0.01\n");
+  expectRefused(p, {}, {p, "rope", "required"});
+  const std::string q = writeScene("no_len.yaml", std::string(kGood) + "");
+  expectRefused(q, {"rope.length=null"}, {q, "rope.length", "required"});
+}
+
+TEST(Scene, MissingEmptyOrBrokenFilesAreRefused) {
+  expectRefused(kScenes + "does_not_exist.yaml", {}, {"does_not_exist.yaml", "cannot open"});
+  const std::string empty = writeScene("empty.yaml", "");
+  expectRefused(empty, {}, {empty, "empty"});
+  const std::string broken = writeScene("broken.yaml", "crane: none\nrope: {model: full\n");
+  expectRefused(broken, {}, {broken, "syntax error", "line"});
+  const std::string crane = writeScene("nocrane.yaml", std::string(kGood));
+  expectRefused(crane, {"crane=t9999", "anchor=null", "structure.model=modal"}, {crane, "crane", "t9999"});
+  const std::string list = writeScene("list.yaml", "- 1\n- 2\n");
+  expectRefused(list, {}, {list, "map"});
+}
+
+TEST(Scene, CrossKeyLimitsAreRefused) {
+  const std::string c1 = kScenes + "t8036_combination1.yaml";
+  expectRefused(c1, {"trolley.radius=85"}, {c1, "trolley.radius", "radius limits"});
+  expectRefused(c1, {"rope.length=70"}, {c1, "rope.length", "rope length limits"});
+  expectRefused(c1, {"anchor=[0,0,1]"}, {c1, "anchor", "crane: none"});
+  const std::string p = writeScene("good.yaml", kGood);
+  expectRefused(p, {"structure.model=modal"}, {p, "structure.model", "rigid"});
+  expectRefused(p, {"initial.mode=equilibrium", "initial.swing_deg=95"}, {p, "initial.swing_deg"});
+  expectRefused(p, {"commands=[{t: 1.0}, {t: 0.5}]"}, {p, "commands[1].t", "increasing"});
+  expectRefused(p, {"commands=[{t: 0.0, slew: 1}]"}, {p, "commands[0].slew", "unknown key"});
+}
+
+TEST(Scene, MalformedOverridesAreRefused) {
+  const std::string p = writeScene("good.yaml", kGood);
+  expectRefused(p, {"rope.elements"}, {"rope.elements", "key.path=value"});
+  expectRefused(p, {"=3"}, {"key.path=value"});
+  expectRefused(p, {"rope..elements=3"}, {"empty key"});
+  expectRefused(p, {"duration.x=3"}, {"duration", "not a map"});
+  expectRefused(p, {"rope.elements=[1, 2"}, {"not valid YAML"});
+}
