@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace crane_twin {
 
@@ -35,6 +36,24 @@ void gaussLegendre01(int n, Eigen::VectorXd& points, Eigen::VectorXd& weights) {
     weights(i) = 1.0 / ((1.0 - x * x) * dp * dp);  // 2/((1-x^2)P'^2) scaled by 1/2
   }
 }
+
+namespace {
+// Gauss rules are computed once per point count: the element routines run in the hot loop.
+struct GaussRule {
+  Eigen::VectorXd x, w;
+};
+const GaussRule& gaussRule(int n) {
+  static const std::vector<GaussRule> rules = [] {
+    std::vector<GaussRule> r(11);
+    for (int k = 1; k <= 10; ++k) gaussLegendre01(k, r[k].x, r[k].w);
+    return r;
+  }();
+  if (n < 1 || n > 10) {
+    throw std::invalid_argument("gauss points must be in 1..10, got " + std::to_string(n));
+  }
+  return rules[n];
+}
+}  // namespace
 
 Eigen::Vector4d ancfShape(double xi, double l) {
   const double x2 = xi * xi, x3 = x2 * xi;
@@ -80,8 +99,8 @@ Eigen::Vector3d ancfPosition(const Vector12& e, double xi, double l) {
 }
 
 Matrix12 ancfMassMatrix(const AncfCableProperties& p) {
-  Eigen::VectorXd xg, wg;
-  gaussLegendre01(4, xg, wg);  // S^T S is a degree-6 polynomial: exact
+  const GaussRule& gr = gaussRule(4);  // S^T S is a degree-6 polynomial: exact
+  const Eigen::VectorXd &xg = gr.x, &wg = gr.w;
   Matrix12 M = Matrix12::Zero();
   for (int g = 0; g < xg.size(); ++g) {
     const Eigen::Vector4d s = ancfShape(xg(g), p.length);
@@ -107,8 +126,8 @@ void ancfStrainCurvature(const Vector12& e, double xi, double l, double& eps, do
 }
 
 double ancfElasticEnergy(const AncfCableProperties& p, const Vector12& e) {
-  Eigen::VectorXd xg, wg;
-  gaussLegendre01(p.gauss_points, xg, wg);
+  const GaussRule& gr = gaussRule(p.gauss_points);
+  const Eigen::VectorXd &xg = gr.x, &wg = gr.w;
   double U = 0.0;
   for (int q = 0; q < xg.size(); ++q) {
     double eps, kappa;
@@ -121,8 +140,8 @@ double ancfElasticEnergy(const AncfCableProperties& p, const Vector12& e) {
 
 void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12& Q,
                       Matrix12* K) {
-  Eigen::VectorXd xg, wg;
-  gaussLegendre01(p.gauss_points, xg, wg);
+  const GaussRule& gr = gaussRule(p.gauss_points);
+  const Eigen::VectorXd &xg = gr.x, &wg = gr.w;
   Q.setZero();
   if (K) K->setZero();
   const double EA = p.axial_stiffness, EI = p.bending_stiffness, l = p.length;

@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Install what crane_twin needs from Debian 12's own packages (run as root). Installs only the
+# packages that are missing, so a second run costs a few dpkg queries.
+set -euo pipefail
+PKGS=(
+  build-essential cmake pkg-config
+  libeigen3-dev libsuitesparse-dev libarpack2-dev libyaml-cpp-dev libcli11-dev
+  libgtest-dev libgmock-dev googletest libbenchmark-dev
+  catkin ros-core-dev ros-message-generation ros-std-msgs ros-sensor-msgs
+  ros-geometry-msgs ros-visualization-msgs libtf2-ros-dev librostest-dev python3-rostest
+)
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install_deps: all ${#PKGS[@]} packages present"
+  exit 0
+fi
+echo "install_deps: installing ${missing[*]}"
+if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
+$SUDO apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
