@@ -1,6 +1,11 @@
 // crane_sim: the command-line tool of SPEC 3.1 (no ROS). Exit status 0 on success, 2 on bad
 // input (message on stderr), 1 on a numerical failure.
 #include <CLI/CLI.hpp>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
 
 #include <cstdio>
 #include <iostream>
@@ -10,6 +15,7 @@
 #include "crane_twin/config_reader.hpp"
 #include "crane_twin/crane_model.hpp"
 #include "crane_twin/modal_analysis.hpp"
+#include "crane_twin/rope_simulation.hpp"
 
 namespace ct = crane_twin;
 
@@ -55,9 +61,15 @@ int runInfo(const SceneArgs& a) {
 int runModes(const SceneArgs& a, int count, const std::string& part) {
   const ct::CraneModel m = ct::buildCraneModel(ct::loadScene(a.scene, a.sets));
   if (part == "rope") {
-    std::cerr << "crane_sim modes: --part rope needs the rope equilibrium solver, which this "
-                 "build does not have yet\n";
-    return 1;
+    ct::RopeSimulation sim(m);
+    if (count < 1 || count >= sim.rope().dofs() - 3) {
+      std::cerr << "--count must be in 1.." << sim.rope().dofs() - 4 << ", got " << count << "\n";
+      return 2;
+    }
+    const ct::ModalBasis b = sim.ropeModes(count);
+    std::printf("index,frequency_hz\n");
+    for (int i = 0; i < count; ++i) std::printf("%d,%.6f\n", i + 1, b.frequencyHz(i));
+    return 0;
   }
   if (!m.structure) {
     std::cerr << a.scene << ": key 'crane': scene has no structure (crane: none); "
@@ -77,6 +89,72 @@ int runModes(const SceneArgs& a, int count, const std::string& part) {
   return 0;
 }
 
+struct RunArgs {
+  std::string out, nodes;
+  bool quiet = false;
+};
+
+std::ofstream openOutput(const std::string& path, const char* option) {
+  std::ofstream f(path);
+  if (!f) throw ct::InputError(std::string(option) + " '" + path + "': cannot open for writing");
+  return f;
+}
+
+int runRun(const SceneArgs& a, const RunArgs& r) {
+  const ct::CraneModel m = ct::buildCraneModel(ct::loadScene(a.scene, a.sets));
+  ct::RopeSimulation sim(m);
+  std::ofstream series, nodes;
+  if (!r.out.empty()) series = openOutput(r.out, "--out");
+  if (!r.nodes.empty()) nodes = openOutput(r.nodes, "--nodes");
+  sim.initialize();
+  const ct::Scene& sc = m.scene;
+  const long steps = std::lround(sc.duration / sc.time_step);
+  const long every = std::max(1L, std::lround(sc.output_interval / sc.time_step));
+  const bool bar = !r.quiet && isatty(fileno(stdout)) && isatty(fileno(stderr));
+  if (series) series << ct::kSeriesHeader << "\n";
+  auto emit = [&]() {
+    if (series) sim.writeSeriesRow(series);
+    if (nodes) sim.writeNodeRows(nodes);
+  };
+  if (nodes) nodes << "t,node,x,y,z\n";
+  emit();
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    for (long k = 1; k <= steps; ++k) {
+      sim.step();
+      if (k % every == 0) emit();
+      if (bar && (k % std::max(1L, steps / 100) == 0 || k == steps)) {
+        std::fprintf(stderr, "\r[%-50s] %5.1f%%  t = %.2f s", std::string(50 * k / steps, '#').c_str(),
+                     100.0 * k / steps, sim.state().t);
+      }
+    }
+  } catch (const ct::NumericalFailure& e) {
+    if (bar) std::fprintf(stderr, "\n");
+    std::cerr << "numerical failure: " << e.what() << "\n";
+    return 1;
+  }
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (bar) std::fprintf(stderr, "\n");
+  const double simS = steps * sc.time_step;
+  std::printf("summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=0 mode_updates_s=0\n",
+              wall, simS, simS / wall, steps);
+  return 0;
+}
+
+int runStatic(const SceneArgs& a) {
+  const ct::CraneModel m = ct::buildCraneModel(ct::loadScene(a.scene, a.sets));
+  ct::RopeSimulation sim(m);
+  Eigen::Vector3d H;
+  const ct::RopeState s = sim.staticState(&H);
+  const Eigen::Vector3d p = ct::AncfRope::nodePosition(s.q, sim.rope().nodes() - 1);
+  std::printf("payload_x,%.9f\npayload_y,%.9f\npayload_z,%.9f\n", p.x(), p.y(), p.z());
+  std::printf("rope_top_tension,%.6f\n", s.lambda.norm());
+  std::printf("jib_tip_dz,0\ncab_dx,0\n");
+  std::printf("holding_force_x,%.6f\nholding_force_y,%.6f\n", H.x(), H.y());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -92,6 +170,15 @@ int main(int argc, char** argv) {
   modes->add_option("--count", count, "number of modes");
   modes->add_option("--part", part, "structure or rope")
       ->check(CLI::IsMember({"structure", "rope"}));
+  SceneArgs runArgs, staticArgs;
+  RunArgs runOpts;
+  CLI::App* run = app.add_subcommand("run", "integrate the scene and write the time series");
+  addSceneArgs(run, runArgs);
+  run->add_option("--out", runOpts.out, "time-series CSV (SPEC 3.1 columns)");
+  run->add_option("--nodes", runOpts.nodes, "rope nodes CSV: t,node,x,y,z");
+  run->add_flag("--quiet", runOpts.quiet, "no progress bar");
+  CLI::App* stat = app.add_subcommand("static", "print the static equilibrium as key,value");
+  addSceneArgs(stat, staticArgs);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -103,6 +190,8 @@ int main(int argc, char** argv) {
   try {
     if (*info) return runInfo(infoArgs);
     if (*modes) return runModes(modesArgs, count, part);
+    if (*run) return runRun(runArgs, runOpts);
+    if (*stat) return runStatic(staticArgs);
   } catch (const ct::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;

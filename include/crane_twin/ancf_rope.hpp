@@ -1,0 +1,58 @@
+// The hanging hoist rope as a chain of ANCF cable elements (SPEC 1.1), with the hook block and
+// payload as a point mass on the last node.
+//
+// Coordinates q (6 per node, node 0 at the top): q = [r_0, r_0x, r_1, r_1x, ..., r_n, r_nx] in
+// the world frame [m, -]. Element k spans nodes k and k+1 and uses q.segment(6k, 12).
+//   M q'' + Q(q) = F_g,   M = sum_k int rho A S^T S dx + m_end (I at r_n),   F_g = M g_field
+// (constant: gravity is a uniform field), Q = dU/dq summed over elements.
+#pragma once
+
+#include <Eigen/Sparse>
+#include <vector>
+
+#include "crane_twin/ancf_cable_element.hpp"
+#include "crane_twin/sparse_assembly.hpp"
+
+namespace crane_twin {
+
+class AncfRope {
+ public:
+  /// elements >= 1 of equal unstretched length L / elements; material of the equivalent rope.
+  AncfRope(int elements, double length, double mass_per_length, double axial_stiffness,
+           double bending_stiffness, double end_mass, const Eigen::Vector3d& gravity);
+
+  int elements() const { return elements_; }
+  int nodes() const { return elements_ + 1; }
+  int dofs() const { return 6 * (elements_ + 1); }
+  double length() const { return element_.length * elements_; }
+  double endMass() const { return end_mass_; }
+  const AncfCableProperties& element() const { return element_; }
+  const SparseMatrix& massMatrix() const { return M_; }
+  const Eigen::VectorXd& gravityForce() const { return Fg_; }
+
+  /// Elastic force Q(q); adds alpha * K(q) into the triplet list at row/col offset `offset` when
+  /// `tangent` is not null.
+  void elasticForce(const Eigen::VectorXd& q, Eigen::VectorXd& Q,
+                    std::vector<Eigen::Triplet<double>>* tangent = nullptr, double alpha = 1.0,
+                    int offset = 0) const;
+  double elasticEnergy(const Eigen::VectorXd& q) const;
+
+  static Eigen::Vector3d nodePosition(const Eigen::VectorXd& q, int node) {
+    return q.segment<3>(6 * node);
+  }
+  /// Point at xi in [0,1] along element k.
+  Eigen::Vector3d pointOnElement(const Eigen::VectorXd& q, int k, double xi) const;
+
+  /// Straight rope from `top` along unit direction d, every element stretched by (1 + eps).
+  Eigen::VectorXd straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d,
+                           double eps = 0.0) const;
+
+ private:
+  int elements_;
+  AncfCableProperties element_;
+  double end_mass_;
+  SparseMatrix M_;
+  Eigen::VectorXd Fg_;
+};
+
+}  // namespace crane_twin

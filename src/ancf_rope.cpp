@@ -1,0 +1,69 @@
+#include "crane_twin/ancf_rope.hpp"
+
+#include <stdexcept>
+
+namespace crane_twin {
+
+AncfRope::AncfRope(int elements, double length, double mass_per_length, double axial_stiffness,
+                   double bending_stiffness, double end_mass, const Eigen::Vector3d& gravity)
+    : elements_(elements), end_mass_(end_mass) {
+  if (elements < 1) throw std::invalid_argument("rope needs at least one element");
+  if (!(length > 0.0)) throw std::invalid_argument("rope length must be positive");
+  element_.length = length / elements;
+  element_.mass_per_length = mass_per_length;
+  element_.axial_stiffness = axial_stiffness;
+  element_.bending_stiffness = bending_stiffness;
+  const Matrix12 Me = ancfMassMatrix(element_);
+  SparseAssembler A(dofs());
+  std::vector<int> eq(12);
+  for (int k = 0; k < elements_; ++k) {
+    for (int i = 0; i < 12; ++i) eq[i] = 6 * k + i;
+    A.add(Me, eq);
+  }
+  for (int d = 0; d < 3; ++d) A.addEntry(6 * elements_ + d, 6 * elements_ + d, end_mass_);
+  M_ = A.build();
+  // F_g = M * (rigid translation field g): exact consistent gravity, incl. the end mass.
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(dofs());
+  for (int j = 0; j < nodes(); ++j) g.segment<3>(6 * j) = gravity;
+  Fg_ = M_ * g;
+}
+
+void AncfRope::elasticForce(const Eigen::VectorXd& q, Eigen::VectorXd& Q,
+                            std::vector<Eigen::Triplet<double>>* tangent, double alpha,
+                            int offset) const {
+  Q.setZero(dofs());
+  Vector12 Qe;
+  Matrix12 Ke;
+  for (int k = 0; k < elements_; ++k) {
+    const Vector12 e = q.segment<12>(6 * k);
+    ancfElasticForce(element_, e, Qe, tangent ? &Ke : nullptr);
+    Q.segment<12>(6 * k) += Qe;
+    if (tangent) {
+      const int o = offset + 6 * k;
+      for (int j = 0; j < 12; ++j)
+        for (int i = 0; i < 12; ++i) tangent->emplace_back(o + i, o + j, alpha * Ke(i, j));
+    }
+  }
+}
+
+double AncfRope::elasticEnergy(const Eigen::VectorXd& q) const {
+  double U = 0.0;
+  for (int k = 0; k < elements_; ++k) U += ancfElasticEnergy(element_, q.segment<12>(6 * k));
+  return U;
+}
+
+Eigen::Vector3d AncfRope::pointOnElement(const Eigen::VectorXd& q, int k, double xi) const {
+  return ancfPosition(q.segment<12>(6 * k), xi, element_.length);
+}
+
+Eigen::VectorXd AncfRope::straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d,
+                                   double eps) const {
+  Eigen::VectorXd q(dofs());
+  for (int j = 0; j < nodes(); ++j) {
+    q.segment<3>(6 * j) = top + (1.0 + eps) * element_.length * j * d;
+    q.segment<3>(6 * j + 3) = (1.0 + eps) * d;
+  }
+  return q;
+}
+
+}  // namespace crane_twin
