@@ -1,5 +1,7 @@
 #include "crane_twin/anchored_rope_solver.hpp"
 
+#include <Eigen/UmfPackSupport>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -89,7 +91,7 @@ RopeState AnchoredRopeSolver::solveStatic(const Eigen::VectorXd& q_guess,
   s.a = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd Q, rhs(n + 3), F = rope_.gravityForce();
   F.segment<3>(n - 6) += end_force;
-  const int loadSteps = 4;
+  const int loadSteps = 1;  // the caller's guess carries the static tension
   for (int ls = 1; ls <= loadSteps; ++ls) {
     const double f = static_cast<double>(ls) / loadSteps;
     bool converged = false;
@@ -98,8 +100,11 @@ RopeState AnchoredRopeSolver::solveStatic(const Eigen::VectorXd& q_guess,
       rhs.head(n) = -(Q - f * F);
       rhs.head<3>() -= s.lambda;
       rhs.tail<3>() = -(s.q.head<3>() - anchor_);
-      factorize("static solve");
-      const Eigen::VectorXd dx = ldlt_.solve(rhs);
+      // Statics use a pivoting LU: without the mass term the rope block can be semi-definite
+      // (bending-only lateral stiffness at low tension), where LDL^T without pivoting stops.
+      Eigen::UmfPackLU<SparseMatrix> lu(A_);
+      if (lu.info() != Eigen::Success) throw NumericalFailure("static solve: singular tangent");
+      const Eigen::VectorXd dx = lu.solve(rhs);
       // Limit the step to a tenth of the rope length: keeps the first iterations of a slack
       // start from overshooting.
       double scale = 1.0;
@@ -128,12 +133,24 @@ RopeState AnchoredRopeSolver::solveSwingEquilibrium(double swing_rad, double az_
     const Eigen::Vector3d c = s.q.segment<3>(rope_.dofs() - 6) - anchor_;
     return std::atan2(c.dot(horiz), -c.z());
   };
-  // Start pre-stretched by the mean static strain: the tension's geometric stiffness makes the
+  // Start from the straight rope stretched by the static tension profile
+  // T(s) = (W_end + mu g (L - s)) / cos(theta): the tension's geometric stiffness makes the
   // tangent definite (an unstressed straight rope can rotate about the anchor at no cost).
-  const double eps0 = (endW + 0.5 * (W - endW)) / rope_.element().axial_stiffness;
-  Eigen::VectorXd guess = rope_.straight(
-      anchor_, Eigen::Vector3d(std::sin(swing_rad) * horiz.x(), std::sin(swing_rad) * horiz.y(),
-                               -std::cos(swing_rad)), eps0);
+  const Eigen::Vector3d d(std::sin(swing_rad) * horiz.x(), std::sin(swing_rad) * horiz.y(),
+                          -std::cos(swing_rad));
+  Eigen::VectorXd guess = rope_.straight(anchor_, d);
+  {
+    const double l = rope_.element().length, EA = rope_.element().axial_stiffness;
+    const double perLength = (W - endW) / rope_.length();
+    Eigen::Vector3d r = anchor_;
+    for (int j = 0; j < rope_.nodes(); ++j) {
+      const double T = (endW + perLength * (rope_.length() - j * l)) / std::cos(swing_rad);
+      guess.segment<3>(6 * j) = r;
+      guess.segment<3>(6 * j + 3) = (1.0 + T / EA) * d;
+      const double Tmid = (endW + perLength * (rope_.length() - (j + 0.5) * l)) / std::cos(swing_rad);
+      r += (1.0 + Tmid / EA) * l * d;
+    }
+  }
   // Closed-form start: a massless rope's chord angle obeys tan(theta) = H / W_end; the rope's
   // own weight adds half its weight.
   double H0 = std::tan(swing_rad) * (endW + 0.5 * (W - endW));
