@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <algorithm>
 #include <cstdio>
+#include <fstream>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -89,4 +91,64 @@ TEST(CraneSimCli, BadInputExitsWithTwoAndNamesTheKey) {
   EXPECT_EQ(r.status, 2) << r.out;
   r = run("");
   EXPECT_EQ(r.status, 2) << r.out;
+}
+
+namespace {
+const std::string kRope = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/rope_pendulum_chrono.yaml";
+}
+
+TEST(CraneSimCli, RunWritesSpecColumnsAndSummary) {
+  const std::string csv = ::testing::TempDir() + "crane_sim_run.csv";
+  const std::string nodes = ::testing::TempDir() + "crane_sim_nodes.csv";
+  const Result r = run("run " + kRope + " --set duration=0.1 --set rope.elements=10 --out " + csv +
+                       " --nodes " + nodes + " --quiet");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto l = lines(r.out);
+  ASSERT_FALSE(l.empty());
+  EXPECT_TRUE(l.back().rfind("summary: wall_s=", 0) == 0) << l.back();
+  for (const char* k : {" sim_s=0.1 ", " rtf=", " steps=100 ", " subdomains=0 ", " mode_updates_s="}) {
+    EXPECT_NE(l.back().find(k), std::string::npos) << k;
+  }
+  std::ifstream in(csv);
+  std::string header;
+  std::getline(in, header);
+  EXPECT_EQ(header,
+            "t,payload_x,payload_y,payload_z,payload_vx,payload_vy,payload_vz,cab_dx,cab_dy,cab_dz,"
+            "jib_tip_dx,jib_tip_dy,jib_tip_dz,trolley_x,trolley_y,trolley_z,rope_top_tension,"
+            "rope_length,slew_angle,trolley_radius,energy,constraint_error,subdomains");
+  int rows = 0;
+  for (std::string row; std::getline(in, row);) {
+    ++rows;
+    EXPECT_EQ(std::count(row.begin(), row.end(), ','), 22) << row;
+    EXPECT_EQ(row.find("nan"), std::string::npos) << row;
+  }
+  EXPECT_EQ(rows, 3);  // t = 0, 0.05, 0.1 at output_interval 0.05
+  std::ifstream nin(nodes);
+  std::getline(nin, header);
+  EXPECT_EQ(header, "t,node,x,y,z");
+  int nrows = 0;
+  for (std::string row; std::getline(nin, row);) ++nrows;
+  EXPECT_EQ(nrows, 3 * 11);
+}
+
+TEST(CraneSimCli, StaticPrintsKeys) {
+  const Result r = run("static " + kRope);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.out.rfind("payload_x,", 0), 0u) << r.out;
+  for (const char* k : {"payload_y,", "payload_z,", "rope_top_tension,", "jib_tip_dz,",
+                        "cab_dx,"}) {
+    EXPECT_NE(r.out.find(std::string("\n") + k), std::string::npos) << k << "\n" << r.out;
+  }
+}
+
+TEST(CraneSimCli, UnbuiltCombinationsAreRefusedClearly) {
+  Result r = run("run " + kScene + " --quiet");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("not built yet"), std::string::npos) << r.out;
+  r = run("run " + kRope + " --set rope.model=reduced --quiet");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("rope.model"), std::string::npos) << r.out;
+  r = run("run " + kRope + " --out /nonexistent/dir/x.csv --quiet");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("--out"), std::string::npos) << r.out;
 }
