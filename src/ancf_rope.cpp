@@ -29,8 +29,7 @@ AncfRope::AncfRope(int elements, double length, double mass_per_length, double a
 }
 
 void AncfRope::elasticForce(const Eigen::VectorXd& q, Eigen::VectorXd& Q,
-                            std::vector<Eigen::Triplet<double>>* tangent, double alpha,
-                            int offset) const {
+                            std::vector<Eigen::Triplet<double>>* tangent) const {
   Q.setZero(dofs());
   Vector12 Qe;
   Matrix12 Ke;
@@ -39,9 +38,9 @@ void AncfRope::elasticForce(const Eigen::VectorXd& q, Eigen::VectorXd& Q,
     ancfElasticForce(element_, e, Qe, tangent ? &Ke : nullptr);
     Q.segment<12>(6 * k) += Qe;
     if (tangent) {
-      const int o = offset + 6 * k;
+      const int o = 6 * k;
       for (int j = 0; j < 12; ++j)
-        for (int i = 0; i < 12; ++i) tangent->emplace_back(o + i, o + j, alpha * Ke(i, j));
+        for (int i = 0; i < 12; ++i) tangent->emplace_back(o + i, o + j, Ke(i, j));
     }
   }
 }
@@ -52,16 +51,11 @@ double AncfRope::elasticEnergy(const Eigen::VectorXd& q) const {
   return U;
 }
 
-Eigen::Vector3d AncfRope::pointOnElement(const Eigen::VectorXd& q, int k, double xi) const {
-  return ancfPosition(q.segment<12>(6 * k), xi, element_.length);
-}
-
-Eigen::VectorXd AncfRope::straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d,
-                                   double eps) const {
+Eigen::VectorXd AncfRope::straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d) const {
   Eigen::VectorXd q(dofs());
   for (int j = 0; j < nodes(); ++j) {
-    q.segment<3>(6 * j) = top + (1.0 + eps) * element_.length * j * d;
-    q.segment<3>(6 * j + 3) = (1.0 + eps) * d;
+    q.segment<3>(6 * j) = top + element_.length * j * d;
+    q.segment<3>(6 * j + 3) = d;
   }
   return q;
 }

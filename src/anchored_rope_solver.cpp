@@ -91,35 +91,27 @@ RopeState AnchoredRopeSolver::solveStatic(const Eigen::VectorXd& q_guess,
   s.a = Eigen::VectorXd::Zero(n);
   Eigen::VectorXd Q, rhs(n + 3), F = rope_.gravityForce();
   F.segment<3>(n - 6) += end_force;
-  const int loadSteps = 1;  // the caller's guess carries the static tension
-  for (int ls = 1; ls <= loadSteps; ++ls) {
-    const double f = static_cast<double>(ls) / loadSteps;
-    bool converged = false;
-    for (int it = 0; it < 50 && !converged; ++it) {
-      assemble(s.q, 0.0, 1.0, Q);
-      rhs.head(n) = -(Q - f * F);
-      rhs.head<3>() -= s.lambda;
-      rhs.tail<3>() = -(s.q.head<3>() - anchor_);
-      // Statics use a pivoting LU: without the mass term the rope block can be semi-definite
-      // (bending-only lateral stiffness at low tension), where LDL^T without pivoting stops.
-      Eigen::UmfPackLU<SparseMatrix> lu(A_);
-      if (lu.info() != Eigen::Success) throw NumericalFailure("static solve: singular tangent");
-      const Eigen::VectorXd dx = lu.solve(rhs);
-      // Limit the step to a tenth of the rope length: keeps the first iterations of a slack
-      // start from overshooting.
-      double scale = 1.0;
-      const double dmax = dx.head(n).cwiseAbs().maxCoeff();
-      if (dmax > 0.1 * rope_.length()) scale = 0.1 * rope_.length() / dmax;
-      s.q += scale * dx.head(n);
-      s.lambda += scale * dx.tail<3>();
-      if (!s.q.allFinite()) throw NumericalFailure("static solve: non-finite state");
-      converged = scale == 1.0 && dmax < 1e-11 * std::max(1.0, rope_.length());
-    }
-    if (!converged) {
-      throw NumericalFailure("static solve did not converge at load factor " + std::to_string(f));
-    }
+  // Statics use a pivoting LU: without the mass term the rope block can be semi-definite
+  // (bending-only lateral stiffness at low tension), where LDL^T without pivoting stops.
+  Eigen::UmfPackLU<SparseMatrix> lu;
+  for (int it = 0; it < 50; ++it) {
+    assemble(s.q, 0.0, 1.0, Q);
+    rhs.head(n) = -(Q - F);
+    rhs.head<3>() -= s.lambda;
+    rhs.tail<3>() = -(s.q.head<3>() - anchor_);
+    lu.compute(A_);
+    if (lu.info() != Eigen::Success) throw NumericalFailure("static solve: singular tangent");
+    const Eigen::VectorXd dx = lu.solve(rhs);
+    // Limit the step to a tenth of the rope length: a poor guess must not overshoot.
+    double scale = 1.0;
+    const double dmax = dx.head(n).cwiseAbs().maxCoeff();
+    if (dmax > 0.1 * rope_.length()) scale = 0.1 * rope_.length() / dmax;
+    s.q += scale * dx.head(n);
+    s.lambda += scale * dx.tail<3>();
+    if (!s.q.allFinite()) throw NumericalFailure("static solve: non-finite state");
+    if (scale == 1.0 && dmax < 1e-11 * std::max(1.0, rope_.length())) return s;
   }
-  return s;
+  throw NumericalFailure("static solve did not converge in 50 Newton iterations");
 }
 
 RopeState AnchoredRopeSolver::solveSwingEquilibrium(double swing_rad, double az_rad,
@@ -138,7 +130,7 @@ RopeState AnchoredRopeSolver::solveSwingEquilibrium(double swing_rad, double az_
   // tangent definite (an unstressed straight rope can rotate about the anchor at no cost).
   const Eigen::Vector3d d(std::sin(swing_rad) * horiz.x(), std::sin(swing_rad) * horiz.y(),
                           -std::cos(swing_rad));
-  Eigen::VectorXd guess = rope_.straight(anchor_, d);
+  Eigen::VectorXd guess(rope_.dofs());
   {
     const double l = rope_.element().length, EA = rope_.element().axial_stiffness;
     const double perLength = (W - endW) / rope_.length();

@@ -25,11 +25,9 @@ RopeSimulation::RopeSimulation(const CraneModel& model) : model_(model) {
   if (sc.rope.damping != 0.0) {
     throw InputError(sc.file + ": key 'rope.damping': rope material damping is not built yet");
   }
-  if (!sc.commands.empty()) {
-    for (const auto& c : sc.commands) {
-      if (c.slew_rate != 0.0 || c.trolley_speed != 0.0 || c.hoist_speed != 0.0) {
-        throw InputError(sc.file + ": key 'commands': drives are not built yet");
-      }
+  for (const auto& c : sc.commands) {
+    if (c.slew_rate != 0.0 || c.trolley_speed != 0.0 || c.hoist_speed != 0.0) {
+      throw InputError(sc.file + ": key 'commands': drives are not built yet");
     }
   }
   rope_ = std::make_unique<AncfRope>(sc.rope.elements, sc.rope.length,

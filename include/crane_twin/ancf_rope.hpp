@@ -30,22 +30,16 @@ class AncfRope {
   const SparseMatrix& massMatrix() const { return M_; }
   const Eigen::VectorXd& gravityForce() const { return Fg_; }
 
-  /// Elastic force Q(q); adds alpha * K(q) into the triplet list at row/col offset `offset` when
-  /// `tangent` is not null.
+  /// Elastic force Q(q); appends the tangent K(q) as triplets when `tangent` is not null.
   void elasticForce(const Eigen::VectorXd& q, Eigen::VectorXd& Q,
-                    std::vector<Eigen::Triplet<double>>* tangent = nullptr, double alpha = 1.0,
-                    int offset = 0) const;
+                    std::vector<Eigen::Triplet<double>>* tangent = nullptr) const;
   double elasticEnergy(const Eigen::VectorXd& q) const;
 
   static Eigen::Vector3d nodePosition(const Eigen::VectorXd& q, int node) {
     return q.segment<3>(6 * node);
   }
-  /// Point at xi in [0,1] along element k.
-  Eigen::Vector3d pointOnElement(const Eigen::VectorXd& q, int k, double xi) const;
-
-  /// Straight rope from `top` along unit direction d, every element stretched by (1 + eps).
-  Eigen::VectorXd straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d,
-                           double eps = 0.0) const;
+  /// Straight, unstretched rope from `top` along unit direction d.
+  Eigen::VectorXd straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d) const;
 
  private:
   int elements_;

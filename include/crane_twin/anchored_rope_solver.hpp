@@ -19,7 +19,6 @@
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
-#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -60,8 +59,9 @@ class AnchoredRopeSolver {
                      const GeneralizedAlpha& scheme, double time_step,
                      NewtonSettings newton = {});
 
-  /// Static equilibrium under gravity and a constant force on the end mass, Newton with load
-  /// stepping from q_guess. Returns the state at rest (v = 0), lambda the support force.
+  /// Static equilibrium under gravity and a constant force on the end mass, damped Newton from
+  /// q_guess (which must carry tension: see solveSwingEquilibrium). Returns the state at rest
+  /// (v = 0); -lambda is the support force on the rope.
   RopeState solveStatic(const Eigen::VectorXd& q_guess, const Eigen::Vector3d& end_force);
 
   /// Equilibrium whose chord (anchor to end node) makes swing_rad with the vertical at azimuth
