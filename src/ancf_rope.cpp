@@ -5,8 +5,9 @@
 namespace crane_twin {
 
 AncfRope::AncfRope(int elements, double length, double mass_per_length, double axial_stiffness,
-                   double bending_stiffness, double end_mass, const Eigen::Vector3d& gravity)
-    : elements_(elements), end_mass_(end_mass) {
+                   double bending_stiffness, double end_mass, const Eigen::Vector3d& gravity,
+                   double top_mass)
+    : elements_(elements), end_mass_(end_mass), top_mass_(top_mass), gravity_(gravity) {
   if (elements < 1) throw std::invalid_argument("rope needs at least one element");
   if (!(length > 0.0)) throw std::invalid_argument("rope length must be positive");
   element_.length = length / elements;
@@ -20,7 +21,10 @@ AncfRope::AncfRope(int elements, double length, double mass_per_length, double a
     for (int i = 0; i < 12; ++i) eq[i] = 6 * k + i;
     A.add(Me, eq);
   }
-  for (int d = 0; d < 3; ++d) A.addEntry(6 * elements_ + d, 6 * elements_ + d, end_mass_);
+  for (int d = 0; d < 3; ++d) {
+    A.addEntry(6 * elements_ + d, 6 * elements_ + d, end_mass_);
+    if (top_mass_ != 0.0) A.addEntry(d, d, top_mass_);
+  }
   M_ = A.build();
   // F_g = M * (rigid translation field g): exact consistent gravity, incl. the end mass.
   Eigen::VectorXd g = Eigen::VectorXd::Zero(dofs());

@@ -1,9 +1,12 @@
 // The hanging hoist rope as a chain of ANCF cable elements (SPEC 1.1), with the hook block and
-// payload as a point mass on the last node.
+// payload as a point mass on the last node and the trolley (when the rope hangs from a crane)
+// as a point mass on the first: the top node coincides with the trolley point through the
+// constraint, so the trolley's inertia and weight act there.
 //
 // Coordinates q (6 per node, node 0 at the top): q = [r_0, r_0x, r_1, r_1x, ..., r_n, r_nx] in
 // the world frame [m, -]. Element k spans nodes k and k+1 and uses q.segment(6k, 12).
-//   M q'' + Q(q) = F_g,   M = sum_k int rho A S^T S dx + m_end (I at r_n),   F_g = M g_field
+//   M q'' + Q(q) = F_g,   M = sum_k int rho A S^T S dx + m_top (I at r_0) + m_end (I at r_n),
+//   F_g = M g_field
 // (constant: gravity is a uniform field), Q = dU/dq summed over elements.
 #pragma once
 
@@ -19,13 +22,16 @@ class AncfRope {
  public:
   /// elements >= 1 of equal unstretched length L / elements; material of the equivalent rope.
   AncfRope(int elements, double length, double mass_per_length, double axial_stiffness,
-           double bending_stiffness, double end_mass, const Eigen::Vector3d& gravity);
+           double bending_stiffness, double end_mass, const Eigen::Vector3d& gravity,
+           double top_mass = 0.0);
 
   int elements() const { return elements_; }
   int nodes() const { return elements_ + 1; }
   int dofs() const { return 6 * (elements_ + 1); }
   double length() const { return element_.length * elements_; }
   double endMass() const { return end_mass_; }
+  double topMass() const { return top_mass_; }
+  const Eigen::Vector3d& gravity() const { return gravity_; }
   const AncfCableProperties& element() const { return element_; }
   const SparseMatrix& massMatrix() const { return M_; }
   const Eigen::VectorXd& gravityForce() const { return Fg_; }
@@ -44,7 +50,8 @@ class AncfRope {
  private:
   int elements_;
   AncfCableProperties element_;
-  double end_mass_;
+  double end_mass_, top_mass_;
+  Eigen::Vector3d gravity_;
   SparseMatrix M_;
   Eigen::VectorXd Fg_;
 };

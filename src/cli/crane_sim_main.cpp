@@ -15,7 +15,7 @@
 #include "crane_twin/config_reader.hpp"
 #include "crane_twin/crane_model.hpp"
 #include "crane_twin/modal_analysis.hpp"
-#include "crane_twin/rope_simulation.hpp"
+#include "crane_twin/crane_simulation.hpp"
 
 namespace ct = crane_twin;
 
@@ -61,7 +61,7 @@ int runInfo(const SceneArgs& a) {
 int runModes(const SceneArgs& a, int count, const std::string& part) {
   const ct::CraneModel m = ct::buildCraneModel(ct::loadScene(a.scene, a.sets));
   if (part == "rope") {
-    ct::RopeSimulation sim(m);
+    ct::CraneSimulation sim(m);
     if (count < 1 || count >= sim.rope().dofs() - 3) {
       std::cerr << "--count must be in 1.." << sim.rope().dofs() - 4 << ", got " << count << "\n";
       return 2;
@@ -102,7 +102,7 @@ std::ofstream openOutput(const std::string& path, const char* option) {
 
 int runRun(const SceneArgs& a, const RunArgs& r) {
   const ct::CraneModel m = ct::buildCraneModel(ct::loadScene(a.scene, a.sets));
-  ct::RopeSimulation sim(m);
+  ct::CraneSimulation sim(m);
   std::ofstream series, nodes;
   if (!r.out.empty()) series = openOutput(r.out, "--out");
   if (!r.nodes.empty()) nodes = openOutput(r.nodes, "--nodes");
@@ -144,13 +144,14 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
 
 int runStatic(const SceneArgs& a) {
   const ct::CraneModel m = ct::buildCraneModel(ct::loadScene(a.scene, a.sets));
-  ct::RopeSimulation sim(m);
+  ct::CraneSimulation sim(m);
   Eigen::Vector3d H;
-  const ct::RopeState s = sim.staticState(&H);
+  const ct::CoupledState s = sim.staticState(&H);
   const Eigen::Vector3d p = ct::AncfRope::nodePosition(s.q, sim.rope().nodes() - 1);
   std::printf("payload_x,%.9f\npayload_y,%.9f\npayload_z,%.9f\n", p.x(), p.y(), p.z());
-  std::printf("rope_top_tension,%.6f\n", s.lambda.norm());
-  std::printf("jib_tip_dz,0\ncab_dx,0\n");
+  std::printf("rope_top_tension,%.6f\n", sim.solver().topTension(s));
+  std::printf("jib_tip_dz,%.9f\n", sim.support().jibTipDisplacement(s.z).z());
+  std::printf("cab_dx,%.9f\n", sim.support().cabDisplacement(s.z).x());
   std::printf("holding_force_x,%.6f\nholding_force_y,%.6f\n", H.x(), H.y());
   return 0;
 }

@@ -7,9 +7,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "crane_twin/anchored_rope_solver.hpp"
+#include "crane_twin/full_order_solver.hpp"
 #include "crane_twin/modal_analysis.hpp"
-#include "crane_twin/rope_simulation.hpp"
+#include "crane_twin/crane_simulation.hpp"
 
 using namespace crane_twin;
 
@@ -42,21 +42,23 @@ TEST(AnchoredRope, StaticStretchAndTopTension) {
   // Hanging rope with tip mass: stretch (M g L + mu g L^2 / 2) / EA, tension (M + mu L) g.
   const double L = 60.0, mu = 1.9, EA = 2.2e7, M = 3600.0;
   AncfRope rope(40, L, mu, EA, 78.5, M, {0, 0, -g});
-  AnchoredRopeSolver solver(rope, {0, 0, 0}, GeneralizedAlpha::fromRhoInf(0.9), 1e-3);
-  const RopeState s = solver.solveSwingEquilibrium(0.0, 0.0);
+  FixedAnchor anchor({0, 0, 0});
+  FullOrderSolver solver(rope, anchor, GeneralizedAlpha::fromRhoInf(0.9), 1e-3);
+  const CoupledState s = solver.solveSwingEquilibrium(0.0, 0.0);
   const double stretch = (M * g * L + mu * g * L * L / 2) / EA;
   // The exact extensible-rope result differs from the linear formula by O(eps^2) ~ 3e-6 m.
   EXPECT_NEAR(-AncfRope::nodePosition(s.q, rope.nodes() - 1).z() - L, stretch, 1e-5);
-  EXPECT_NEAR(AnchoredRopeSolver::topTension(s), (M + mu * L) * g, 1e-6 * (M + mu * L) * g);
+  EXPECT_NEAR(solver.topTension(s), (M + mu * L) * g, 1e-6 * (M + mu * L) * g);
   EXPECT_NEAR(AncfRope::nodePosition(s.q, rope.nodes() - 1).x(), 0.0, 1e-12);
 }
 
 TEST(AnchoredRope, SwingEquilibriumHoldsTheChordAngle) {
   AncfRope rope(30, 60.0, 1.9, 2.2e7, 78.5, 3600.0, {0, 0, -g});
-  AnchoredRopeSolver solver(rope, {1, 2, 3}, GeneralizedAlpha::fromRhoInf(0.9), 1e-3);
+  FixedAnchor anchor({1, 2, 3});
+  FullOrderSolver solver(rope, anchor, GeneralizedAlpha::fromRhoInf(0.9), 1e-3);
   Eigen::Vector3d H;
   const double th = 5.0 * M_PI / 180, az = 0.3;
-  const RopeState s = solver.solveSwingEquilibrium(th, az, &H);
+  const CoupledState s = solver.solveSwingEquilibrium(th, az, &H);
   const Eigen::Vector3d c = AncfRope::nodePosition(s.q, rope.nodes() - 1) - Eigen::Vector3d(1, 2, 3);
   EXPECT_NEAR(std::atan2(std::hypot(c.x(), c.y()), -c.z()), th, 1e-9);
   EXPECT_NEAR(std::atan2(c.y(), c.x()), az, 1e-9);
@@ -69,7 +71,7 @@ TEST(AnchoredRope, SwingEquilibriumHoldsTheChordAngle) {
 TEST(AnchoredRope, HangingChainModesMatchBessel) {
   // No tip mass: w_n = (j0_n / 2) sqrt(g / L), j0 = 2.4048, 5.5201.
   const CraneModel m = pendulumModel({"payload.mass=0", "rope.elements=60", "rope.bending=false"});
-  RopeSimulation sim(m);
+  CraneSimulation sim(m);
   const ModalBasis b = sim.ropeModes(4);
   const double L = 60.0;
   const double w1 = 2.404826 / 2 * std::sqrt(g / L), w2 = 5.520078 / 2 * std::sqrt(g / L);
@@ -105,7 +107,7 @@ TEST(AnchoredRope, HeavyRopeWithTipMassModesMatchClosedForm) {
   }
   ASSERT_EQ(roots.size(), 2u);
   const CraneModel m = pendulumModel({"rope.elements=120", "rope.bending=false"});
-  RopeSimulation sim(m);
+  CraneSimulation sim(m);
   const ModalBasis b = sim.ropeModes(4);
   EXPECT_NEAR(std::sqrt(b.omega2(0)), roots[0], 1e-3 * roots[0]);
   EXPECT_NEAR(std::sqrt(b.omega2(2)), roots[1], 1e-3 * roots[1]);
@@ -118,13 +120,13 @@ TEST(AnchoredRope, EnergyConservedWithRhoInfOneAndNeverGrowsWithDissipation) {
     const CraneModel m = pendulumModel({"rope.elements=20", "time_step=0.01",
                                         "initial.mode=equilibrium",
                                         "integrator.rho_inf=" + std::to_string(rho)});
-    RopeSimulation sim(m);
+    CraneSimulation sim(m);
     sim.initialize();
     const double E0 = sim.solver().energy(sim.state());
     // Swing energy: potential of the released swing above the hanging equilibrium.
     const CraneModel m0 = pendulumModel({"rope.elements=20", "initial.swing_deg=0"});
-    RopeSimulation rest(m0);
-    const RopeState s0 = rest.staticState();
+    CraneSimulation rest(m0);
+    const CoupledState s0 = rest.staticState();
     const double Eswing = E0 - rest.solver().energy(s0);
     ASSERT_GT(Eswing, 0.0);
     double Eprev = E0, maxDev = 0.0;
@@ -160,7 +162,7 @@ TEST(AnchoredRope, TracksProjectChronoTipOverFirstTwoSeconds) {
     ref.push_back({v[0], v[1], v[3], v[7]});
   }
   const CraneModel m = pendulumModel({"duration=2.0"});
-  RopeSimulation sim(m);
+  CraneSimulation sim(m);
   sim.initialize();
   std::size_t r = 1;
   double worstX = 0.0, worstZ = 0.0;
@@ -184,7 +186,7 @@ TEST(AnchoredRope, SwingPeriodFromIntegrationMatchesRopeMode) {
   // Bessel closed form above), here for a 30-element rope at 10 ms steps with rho_inf = 1.
   const CraneModel m = pendulumModel({"rope.elements=30", "time_step=0.01", "initial.mode=equilibrium",
                                       "initial.swing_deg=0.5", "integrator.rho_inf=1.0"});
-  RopeSimulation sim(m);
+  CraneSimulation sim(m);
   const double w1 = std::sqrt(sim.ropeModes(2).omega2(0));
   sim.initialize();
   std::vector<double> crossings;

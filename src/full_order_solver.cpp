@@ -1,4 +1,4 @@
-#include "crane_twin/anchored_rope_solver.hpp"
+#include "crane_twin/full_order_solver.hpp"
 
 #include <Eigen/UmfPackSupport>
 
@@ -20,11 +20,13 @@ GeneralizedAlpha GeneralizedAlpha::fromRhoInf(double rho) {
 
 GeneralizedAlpha GeneralizedAlpha::newmark() { return GeneralizedAlpha{}; }
 
-AnchoredRopeSolver::AnchoredRopeSolver(const AncfRope& rope, const Eigen::Vector3d& anchor,
-                                       const GeneralizedAlpha& scheme, double time_step,
-                                       NewtonSettings newton)
-    : rope_(rope), anchor_(anchor), ga_(scheme), h_(time_step), newton_(newton) {
-  // Pattern: every element block, the mass matrix, and the constraint rows/columns.
+FullOrderSolver::FullOrderSolver(const AncfRope& rope, RopeSupport& support,
+                                 const GeneralizedAlpha& scheme, double time_step,
+                                 NewtonSettings newton)
+    : rope_(rope), support_(support), ga_(scheme), h_(time_step), newton_(newton) {
+  if (!(time_step > 0.0)) throw std::invalid_argument("time step must be positive");
+  // Pattern: every element block, the mass matrix, the constraint rows/columns and the
+  // 3 x 3 multiplier block (-G; lower triangle suffices for LDL^T but LU reads it all).
   const int n = rope_.dofs();
   std::vector<Eigen::Triplet<double>> t;
   for (int k = 0; k < rope_.elements(); ++k)
@@ -33,6 +35,7 @@ AnchoredRopeSolver::AnchoredRopeSolver(const AncfRope& rope, const Eigen::Vector
   for (int d = 0; d < 3; ++d) {
     t.emplace_back(n + d, d, 1.0);
     t.emplace_back(d, n + d, 1.0);
+    for (int e = 0; e < 3; ++e) t.emplace_back(n + d, n + e, 0.0);
   }
   A_.resize(n + 3, n + 3);
   A_.setFromTriplets(t.begin(), t.end());
@@ -52,9 +55,9 @@ AnchoredRopeSolver::AnchoredRopeSolver(const AncfRope& rope, const Eigen::Vector
   ldlt_.analyzePattern(A_);
 }
 
-// A = [ massWeight M + stiffWeight K(q)   C_q^T ; C_q  0 ],  C_q = [I3 0 ...].
-void AnchoredRopeSolver::assemble(const Eigen::VectorXd& q, double massWeight,
-                                  double stiffWeight, Eigen::VectorXd& Q) {
+// A = [ massWeight M + stiffWeight K(q)   C_q^T ; C_q  -G ],  C_q = [I3 0 ...].
+void FullOrderSolver::assemble(const Eigen::VectorXd& q, double massWeight, double stiffWeight,
+                               const Eigen::Matrix3d& G, Eigen::VectorXd& Q) {
   double* val = A_.valuePtr();
   const int n = rope_.dofs();
   std::fill(val, val + A_.nonZeros(), 0.0);
@@ -73,32 +76,56 @@ void AnchoredRopeSolver::assemble(const Eigen::VectorXd& q, double massWeight,
   for (int d = 0; d < 3; ++d) {
     A_.coeffRef(n + d, d) = 1.0;
     A_.coeffRef(d, n + d) = 1.0;
+    for (int e = 0; e < 3; ++e) A_.coeffRef(n + d, n + e) = -G(d, e);
   }
 }
 
-void AnchoredRopeSolver::factorize(const std::string& what) {
+// Block elimination of the support (see the header): the reduced right-hand side is
+// [r_q; r_c + D A_z^-1 r_z]; afterwards dz = A_z^-1 (r_z + D^T dy).
+Eigen::VectorXd FullOrderSolver::condensedRhs(const Eigen::VectorXd& rq, const Eigen::VectorXd& rz,
+                                              const Eigen::Vector3d& rc,
+                                              Eigen::VectorXd& Azinv_rz) const {
+  const int n = rope_.dofs();
+  Eigen::VectorXd rhs(n + 3);
+  rhs.head(n) = rq;
+  rhs.tail<3>() = rc;
+  if (support_.size() > 0) {
+    Azinv_rz = support_.solve(rz);
+    rhs.tail<3>() += support_.pointMotion(Azinv_rz);
+  }
+  return rhs;
+}
+
+void FullOrderSolver::factorize(const std::string& what) {
   ldlt_.factorize(A_);
   if (ldlt_.info() != Eigen::Success) throw NumericalFailure(what + ": singular iteration matrix");
 }
 
-RopeState AnchoredRopeSolver::solveStatic(const Eigen::VectorXd& q_guess,
+CoupledState FullOrderSolver::solveStatic(const Eigen::VectorXd& q_guess,
+                                          const Eigen::VectorXd& z_guess,
                                           const Eigen::Vector3d& end_force) {
-  const int n = rope_.dofs();
-  RopeState s;
+  const int n = rope_.dofs(), m = support_.size();
+  CoupledState s;
   s.q = q_guess;
   s.v = Eigen::VectorXd::Zero(n);
   s.qdd = Eigen::VectorXd::Zero(n);
   s.a = Eigen::VectorXd::Zero(n);
-  Eigen::VectorXd Q, rhs(n + 3), F = rope_.gravityForce();
+  s.z = z_guess.size() == m ? z_guess : Eigen::VectorXd::Zero(m);
+  s.zd = s.zdd = s.za = Eigen::VectorXd::Zero(m);
+  Eigen::VectorXd Q, F = rope_.gravityForce(), Azr;
   F.segment<3>(n - 6) += end_force;
+  const Eigen::Matrix3d G = support_.setIterationWeights(0.0, 0.0, 1.0);
   // Statics use a pivoting LU: without the mass term the rope block can be semi-definite
   // (bending-only lateral stiffness at low tension), where LDL^T without pivoting stops.
   Eigen::UmfPackLU<SparseMatrix> lu;
   for (int it = 0; it < 50; ++it) {
-    assemble(s.q, 0.0, 1.0, Q);
-    rhs.head(n) = -(Q - F);
-    rhs.head<3>() -= s.lambda;
-    rhs.tail<3>() = -(s.q.head<3>() - anchor_);
+    assemble(s.q, 0.0, 1.0, G, Q);
+    Eigen::VectorXd rq = -(Q - F);
+    rq.head<3>() -= s.lambda;
+    Eigen::VectorXd rz;
+    if (m > 0) rz = -(support_.internalForce(s.z, s.zd, s.zdd) - support_.pointForceToCoordinates(s.lambda));
+    const Eigen::Vector3d rc = -(s.q.head<3>() - support_.point(s.z));
+    const Eigen::VectorXd rhs = condensedRhs(rq, rz, rc, Azr);
     lu.compute(A_);
     if (lu.info() != Eigen::Success) throw NumericalFailure("static solve: singular tangent");
     const Eigen::VectorXd dx = lu.solve(rhs);
@@ -108,21 +135,22 @@ RopeState AnchoredRopeSolver::solveStatic(const Eigen::VectorXd& q_guess,
     if (dmax > 0.1 * rope_.length()) scale = 0.1 * rope_.length() / dmax;
     s.q += scale * dx.head(n);
     s.lambda += scale * dx.tail<3>();
-    if (!s.q.allFinite()) throw NumericalFailure("static solve: non-finite state");
+    if (m > 0) s.z += scale * (Azr + support_.solve(support_.pointForceToCoordinates(dx.tail<3>())));
+    if (!s.q.allFinite() || !s.z.allFinite()) throw NumericalFailure("static solve: non-finite state");
     if (scale == 1.0 && dmax < 1e-11 * std::max(1.0, rope_.length())) return s;
   }
   throw NumericalFailure("static solve did not converge in 50 Newton iterations");
 }
 
-RopeState AnchoredRopeSolver::solveSwingEquilibrium(double swing_rad, double az_rad,
+CoupledState FullOrderSolver::solveSwingEquilibrium(double swing_rad, double az_rad,
                                                     Eigen::Vector3d* holding_force) {
   const Eigen::Vector3d horiz(std::cos(az_rad), std::sin(az_rad), 0.0);
-  // Total weight from the gravity force (sum of z components, incl. the end mass).
-  double W = 0.0;
-  for (int j = 0; j < rope_.nodes(); ++j) W -= rope_.gravityForce()(6 * j + 2);
-  const double endW = rope_.endMass() * W / (rope_.endMass() + rope_.element().mass_per_length * rope_.length());
-  auto chordAngle = [&](const RopeState& s) {
-    const Eigen::Vector3d c = s.q.segment<3>(rope_.dofs() - 6) - anchor_;
+  const double g = rope_.gravity().norm();
+  const double endW = rope_.endMass() * g;
+  const double W = endW + rope_.element().mass_per_length * rope_.length() * g;
+  const Eigen::Vector3d top = support_.point(Eigen::VectorXd::Zero(support_.size()));
+  auto chordAngle = [&](const CoupledState& s) {
+    const Eigen::Vector3d c = s.q.segment<3>(rope_.dofs() - 6) - s.q.head<3>();
     return std::atan2(c.dot(horiz), -c.z());
   };
   // Start from the straight rope stretched by the static tension profile
@@ -134,7 +162,7 @@ RopeState AnchoredRopeSolver::solveSwingEquilibrium(double swing_rad, double az_
   {
     const double l = rope_.element().length, EA = rope_.element().axial_stiffness;
     const double perLength = (W - endW) / rope_.length();
-    Eigen::Vector3d r = anchor_;
+    Eigen::Vector3d r = top;
     for (int j = 0; j < rope_.nodes(); ++j) {
       const double T = (endW + perLength * (rope_.length() - j * l)) / std::cos(swing_rad);
       guess.segment<3>(6 * j) = r;
@@ -146,20 +174,20 @@ RopeState AnchoredRopeSolver::solveSwingEquilibrium(double swing_rad, double az_
   // Closed-form start: a massless rope's chord angle obeys tan(theta) = H / W_end; the rope's
   // own weight adds half its weight.
   double H0 = std::tan(swing_rad) * (endW + 0.5 * (W - endW));
-  RopeState s0 = solveStatic(guess, H0 * horiz);
+  CoupledState s0 = solveStatic(guess, Eigen::VectorXd(), H0 * horiz);
   if (swing_rad == 0.0) {
     if (holding_force) holding_force->setZero();
     return s0;
   }
   double H1 = H0 * 1.02;
-  RopeState s1 = solveStatic(s0.q, H1 * horiz);
+  CoupledState s1 = solveStatic(s0.q, s0.z, H1 * horiz);
   double e0 = chordAngle(s0) - swing_rad, e1 = chordAngle(s1) - swing_rad;
   for (int it = 0; it < 30 && std::abs(e1) > 1e-12; ++it) {
     const double H2 = H1 - e1 * (H1 - H0) / (e1 - e0);
     H0 = H1;
     e0 = e1;
     H1 = H2;
-    s1 = solveStatic(s1.q, H1 * horiz);
+    s1 = solveStatic(s1.q, s1.z, H1 * horiz);
     e1 = chordAngle(s1) - swing_rad;
   }
   if (std::abs(e1) > 1e-9) throw NumericalFailure("swing equilibrium: chord angle not reached");
@@ -167,39 +195,59 @@ RopeState AnchoredRopeSolver::solveSwingEquilibrium(double swing_rad, double az_
   return s1;
 }
 
-void AnchoredRopeSolver::initializeAccelerations(RopeState& s) {
-  const int n = rope_.dofs();
-  Eigen::VectorXd Q, rhs(n + 3);
-  assemble(s.q, 1.0, 0.0, Q);
-  rhs.head(n) = rope_.gravityForce() - Q;
-  rhs.tail<3>().setZero();
+void FullOrderSolver::initializeAccelerations(CoupledState& s) {
+  const int n = rope_.dofs(), m = support_.size();
+  if (s.z.size() != m) s.z = Eigen::VectorXd::Zero(m);
+  if (s.zd.size() != m) s.zd = Eigen::VectorXd::Zero(m);
+  s.zdd = Eigen::VectorXd::Zero(m);
+  Eigen::VectorXd Q, Azr, rz;
+  const Eigen::Matrix3d G = support_.setIterationWeights(1.0, 0.0, 0.0);
+  assemble(s.q, 1.0, 0.0, G, Q);
+  if (m > 0) rz = -support_.internalForce(s.z, s.zd, s.zdd);
+  const Eigen::VectorXd rhs =
+      condensedRhs(rope_.gravityForce() - Q, rz, Eigen::Vector3d::Zero(), Azr);
   factorize("initial accelerations");
   const Eigen::VectorXd x = ldlt_.solve(rhs);
   s.qdd = x.head(n);
   s.a = s.qdd;
   s.lambda = x.tail<3>();
+  if (m > 0) s.zdd = Azr + support_.solve(support_.pointForceToCoordinates(s.lambda));
+  s.za = s.zdd;
 }
 
-void AnchoredRopeSolver::step(RopeState& s) {
-  const int n = rope_.dofs();
+void FullOrderSolver::step(CoupledState& s) {
+  const int n = rope_.dofs(), m = support_.size();
   const double h = h_, am = ga_.alpha_m, af = ga_.alpha_f, be = ga_.beta, ga = ga_.gamma;
   const double betaP = (1.0 - am) / (h * h * be * (1.0 - af));
   const double gammaP = ga / (h * be);
-  // Predictor with q''_{n+1} = q''_n.
-  const Eigen::VectorXd qdd0 = s.qdd, a0 = s.a, v0 = s.v;
-  Eigen::VectorXd aNew = (qdd0 - am * a0) / (1.0 - am);
-  s.q += h * v0 + h * h * ((0.5 - be) * a0 + be * aNew);
-  s.v = v0 + h * ((1.0 - ga) * a0 + ga * aNew);
-  // s.qdd stays qdd0
-  Eigen::VectorXd Q, rhs(n + 3);
   const double bh2 = be * h * h;
+  // Predictor with q''_{n+1} = q''_n (rope and support alike).
+  const Eigen::VectorXd qdd0 = s.qdd, a0 = s.a, zdd0 = s.zdd, za0 = s.za;
+  {
+    const Eigen::VectorXd aNew = (qdd0 - am * a0) / (1.0 - am);
+    s.q += h * s.v + h * h * ((0.5 - be) * a0 + be * aNew);
+    s.v += h * ((1.0 - ga) * a0 + ga * aNew);
+  }
+  if (m > 0) {
+    const Eigen::VectorXd zaNew = (zdd0 - am * za0) / (1.0 - am);
+    s.z += h * s.zd + h * h * ((0.5 - be) * za0 + be * zaNew);
+    s.zd += h * ((1.0 - ga) * za0 + ga * zaNew);
+  }
+  const double massWeight = (1.0 - am) / (1.0 - af);
+  const Eigen::Matrix3d G = support_.setIterationWeights(massWeight, ga * h, bh2);
+  Eigen::VectorXd Q, Azr, rz;
   const SparseMatrix& M = rope_.massMatrix();
   int it = 0;
   for (; it < newton_.max_iterations; ++it) {
-    assemble(s.q, (1.0 - am) / (1.0 - af), bh2, Q);
-    rhs.head(n) = -bh2 * (M * s.qdd + Q - rope_.gravityForce());
-    rhs.head<3>() -= bh2 * s.lambda;
-    rhs.tail<3>() = -(s.q.head<3>() - anchor_);
+    assemble(s.q, massWeight, bh2, G, Q);
+    Eigen::VectorXd rq = -bh2 * (M * s.qdd + Q - rope_.gravityForce());
+    rq.head<3>() -= bh2 * s.lambda;
+    if (m > 0) {
+      rz = -bh2 * (support_.internalForce(s.z, s.zd, s.zdd) -
+                   support_.pointForceToCoordinates(s.lambda));
+    }
+    const Eigen::Vector3d rc = -(s.q.head<3>() - support_.point(s.z));
+    const Eigen::VectorXd rhs = condensedRhs(rq, rz, rc, Azr);
     factorize("t = " + std::to_string(s.t + h) + " s");
     const Eigen::VectorXd dx = ldlt_.solve(rhs);
     const Eigen::VectorXd dq = dx.head(n);
@@ -207,12 +255,20 @@ void AnchoredRopeSolver::step(RopeState& s) {
     s.v += gammaP * dq;
     s.qdd += betaP * dq;
     s.lambda += dx.tail<3>() / bh2;
-    if (!s.q.allFinite()) {
+    double dmax = dq.cwiseAbs().maxCoeff();
+    if (m > 0) {
+      const Eigen::VectorXd dz = Azr + support_.solve(support_.pointForceToCoordinates(dx.tail<3>()));
+      s.z += dz;
+      s.zd += gammaP * dz;
+      s.zdd += betaP * dz;
+      // Structure coordinates are modal amplitudes [sqrt(kg) m] or displacements [m]; their
+      // effect at the support point bounds the change that matters for the rope.
+      dmax = std::max(dmax, support_.pointMotion(dz).cwiseAbs().maxCoeff());
+    }
+    if (!s.q.allFinite() || !s.z.allFinite()) {
       throw NumericalFailure("t = " + std::to_string(s.t + h) + " s: non-finite state");
     }
-    const double cerr = (s.q.head<3>() - anchor_).norm();
-    if (dq.cwiseAbs().maxCoeff() < newton_.position_tolerance &&
-        cerr < newton_.constraint_tolerance) {
+    if (dmax < newton_.position_tolerance && constraintError(s) < newton_.constraint_tolerance) {
       ++it;
       break;
     }
@@ -223,13 +279,22 @@ void AnchoredRopeSolver::step(RopeState& s) {
     }
   }
   s.a = (af * qdd0 - am * a0 + (1.0 - af) * s.qdd) / (1.0 - am);
+  if (m > 0) s.za = (af * zdd0 - am * za0 + (1.0 - af) * s.zdd) / (1.0 - am);
   s.t += h;
   s.newton_iterations = it;
 }
 
-double AnchoredRopeSolver::energy(const RopeState& s) const {
+double FullOrderSolver::energy(const CoupledState& s) const {
   return 0.5 * s.v.dot(rope_.massMatrix() * s.v) + rope_.elasticEnergy(s.q) -
-         rope_.gravityForce().dot(s.q);
+         rope_.gravityForce().dot(s.q) + support_.energy(s.z, s.zd);
+}
+
+double FullOrderSolver::topTension(const CoupledState& s) const {
+  return (s.lambda + rope_.topMass() * (s.qdd.head<3>() - rope_.gravity())).norm();
+}
+
+double FullOrderSolver::constraintError(const CoupledState& s) const {
+  return (s.q.head<3>() - support_.point(s.z)).norm();
 }
 
 }  // namespace crane_twin

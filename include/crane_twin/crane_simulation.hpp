@@ -1,0 +1,60 @@
+// A scene run at full order (SPEC 1.5): the ANCF rope, what holds it (a fixed anchor for
+// crane: none or structure: rigid, the T8036 structure in modal or full coordinates), the
+// initial state of SPEC 2 (equilibrium with a holding force, or stress-free), time stepping,
+// and the SPEC 3.1 output rows. The ROS-free unit the CLI's `run`, `static` and
+// `modes --part rope` use.
+#pragma once
+
+#include <memory>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "crane_twin/crane_model.hpp"
+#include "crane_twin/full_order_solver.hpp"
+#include "crane_twin/modal_analysis.hpp"
+#include "crane_twin/rope_support.hpp"
+
+namespace crane_twin {
+
+/// SPEC 3.1 time-series columns, in order.
+extern const char* const kSeriesHeader;
+
+class CraneSimulation {
+ public:
+  /// Builds the rope and its support. Throws InputError for what this version cannot run
+  /// (rope.model other than full, drives, rope damping), naming the key.
+  explicit CraneSimulation(const CraneModel& model);
+
+  /// Build the initial state of SPEC 2 (t = 0).
+  void initialize();
+  void step();
+  const CoupledState& state() const { return state_; }
+  const AncfRope& rope() const { return *rope_; }
+  const RopeSupport& support() const { return *support_; }
+  const FullOrderSolver& solver() const { return *solver_; }
+
+  /// Write one CSV row of the SPEC 3.1 columns for the current state.
+  void writeSeriesRow(std::ostream& out) const;
+  /// Write `t,node,x,y,z` rows for every rope node.
+  void writeNodeRows(std::ostream& out) const;
+
+  /// Static equilibrium of the scene (SPEC 2 `equilibrium` start, holding force included).
+  CoupledState staticState(Eigen::Vector3d* holding_force = nullptr);
+  /// Rope modes (with the end mass) linearised at the static equilibrium without holding force:
+  /// top node's position fixed, slope free.
+  ModalBasis ropeModes(int count);
+
+ private:
+  const CraneModel& model_;
+  std::unique_ptr<AncfRope> rope_;
+  std::unique_ptr<RopeSupport> support_;
+  std::unique_ptr<FullOrderSolver> solver_;
+  CoupledState state_;
+};
+
+/// The rope's support for a scene: FixedAnchor (crane: none: the anchor; structure: rigid: the
+/// undeformed trolley point), ModalStructureSupport or FullStructureSupport.
+std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model);
+
+}  // namespace crane_twin

@@ -1,0 +1,79 @@
+// What holds the rope's top node (SPEC 1.3): a fixed anchor (crane: none, or a rigid
+// structure), or the flexible crane structure in modal or full FE coordinates z.
+//
+// The support point is linear in z (small-deformation structure, slewing angle and trolley
+// radius fixed during a step):
+//   r_p(z) = r_0 + D z                                             [m, world frame]
+// and the support's own dynamics are linear:
+//   M_z z'' + C_z z' + K_z z - D^T lambda = 0,
+// with lambda the force the rope's top node exerts on the support point (the constraint
+// C = r_top - r_p(z) = 0 acts on the rope with -lambda). The full-order solver eliminates z
+// from every linear solve by its Schur complement: with A_z = a M_z + c C_z + k K_z,
+//   G = D A_z^-1 D^T  (3 x 3 compliance of the support point),
+// so the rope's KKT system only grows by the 3 x 3 block -G.
+#pragma once
+
+#include <Eigen/Dense>
+
+namespace crane_twin {
+
+class RopeSupport {
+ public:
+  virtual ~RopeSupport() = default;
+  /// Number of support coordinates z (0 for a fixed anchor).
+  virtual int size() const = 0;
+  /// r_p(z) [m].
+  virtual Eigen::Vector3d point(const Eigen::VectorXd& z) const = 0;
+  /// D dz: motion of the support point for a coordinate increment dz.
+  virtual Eigen::Vector3d pointMotion(const Eigen::VectorXd& dz) const = 0;
+  /// D^T f: generalised force of a point force f at the support point.
+  virtual Eigen::VectorXd pointForceToCoordinates(const Eigen::Vector3d& f) const = 0;
+  /// M_z z'' + C_z z' + K_z z.
+  virtual Eigen::VectorXd internalForce(const Eigen::VectorXd& z, const Eigen::VectorXd& zd,
+                                        const Eigen::VectorXd& zdd) const = 0;
+  /// Factorise A_z = a M_z + c C_z + k K_z (cached: only refactorised when (a, c, k) change)
+  /// and return G = D A_z^-1 D^T.
+  virtual Eigen::Matrix3d setIterationWeights(double a, double c, double k) = 0;
+  /// A_z^-1 r for the weights last set.
+  virtual Eigen::VectorXd solve(const Eigen::VectorXd& r) const = 0;
+  /// 1/2 z'^T M_z z' + 1/2 z^T K_z z [J] (strain energy measured from the self-weight state).
+  virtual double energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const = 0;
+  /// Displacement of the cab and jib-tip reference points from the undeformed structure,
+  /// slewing frame [m] (SPEC 3.1 cab_d*, jib_tip_d*); zero for an anchor.
+  virtual Eigen::Vector3d cabDisplacement(const Eigen::VectorXd& z) const = 0;
+  virtual Eigen::Vector3d jibTipDisplacement(const Eigen::VectorXd& z) const = 0;
+};
+
+/// A fixed point in the world frame (no coordinates).
+class FixedAnchor final : public RopeSupport {
+ public:
+  explicit FixedAnchor(const Eigen::Vector3d& p) : p_(p) {}
+  int size() const override { return 0; }
+  Eigen::Vector3d point(const Eigen::VectorXd&) const override { return p_; }
+  Eigen::Vector3d pointMotion(const Eigen::VectorXd&) const override {
+    return Eigen::Vector3d::Zero();
+  }
+  Eigen::VectorXd pointForceToCoordinates(const Eigen::Vector3d&) const override {
+    return Eigen::VectorXd();
+  }
+  Eigen::VectorXd internalForce(const Eigen::VectorXd&, const Eigen::VectorXd&,
+                                const Eigen::VectorXd&) const override {
+    return Eigen::VectorXd();
+  }
+  Eigen::Matrix3d setIterationWeights(double, double, double) override {
+    return Eigen::Matrix3d::Zero();
+  }
+  Eigen::VectorXd solve(const Eigen::VectorXd&) const override { return Eigen::VectorXd(); }
+  double energy(const Eigen::VectorXd&, const Eigen::VectorXd&) const override { return 0.0; }
+  Eigen::Vector3d cabDisplacement(const Eigen::VectorXd&) const override {
+    return Eigen::Vector3d::Zero();
+  }
+  Eigen::Vector3d jibTipDisplacement(const Eigen::VectorXd&) const override {
+    return Eigen::Vector3d::Zero();
+  }
+
+ private:
+  Eigen::Vector3d p_;
+};
+
+}  // namespace crane_twin

@@ -1,0 +1,94 @@
+// The flexible T8036 structure as the rope's support (SPEC 1.2, 1.3, 1.5).
+//
+// The generated geometry is taken as the structure's shape under its own weight (the jib and
+// mast are fabricated with a camber that offsets the dead-load deflection, as built cranes
+// are): z measures the motion about that self-weight equilibrium, so in the linear theory the
+// self-weight drops out of the equations exactly. Free-DOF displacement u (slewing frame)
+// = T z, with T = Phi (the lowest mass-normalised modes, `structure.model: modal`) or T = I
+// (`full`):
+//   modal:  z'' + 2 zeta Omega z' + Omega^2 z = Phi^T B^T R^T lambda
+//   full:   M z'' + (alpha M + beta K) z' + K z = B^T R^T lambda,
+// with Rayleigh damping alpha, beta matched to the modal damping ratio zeta at the first and
+// the `structure.modes`-th natural frequencies (between them the damping ratio dips below zeta,
+// above them it grows: the modes the modal model drops are damped out).
+// The trolley point interpolates the rail nodes at the trolley radius s (weights B, SPEC 1.3):
+//   r_p = R(theta) (X_p(s) + B T z),  R(theta) the slewing rotation about z.
+// The trolley's own mass is not part of the structure: it rides on the rope's top node, which
+// coincides with the trolley point through the constraint.
+#pragma once
+
+#include <Eigen/CholmodSupport>
+#include <memory>
+
+#include "crane_twin/modal_analysis.hpp"
+#include "crane_twin/rope_support.hpp"
+#include "crane_twin/tower_crane_structure.hpp"
+
+namespace crane_twin {
+
+/// Shared geometry of a flexible-structure support: rotation and the rows that pick the
+/// trolley, cab and jib-tip translations out of u = T z.
+class StructureSupportBase : public RopeSupport {
+ public:
+  Eigen::Vector3d point(const Eigen::VectorXd& z) const override { return r0_ + D_ * z; }
+  Eigen::Vector3d pointMotion(const Eigen::VectorXd& dz) const override { return D_ * dz; }
+  Eigen::VectorXd pointForceToCoordinates(const Eigen::Vector3d& f) const override {
+    return D_.transpose() * f;
+  }
+  Eigen::Vector3d cabDisplacement(const Eigen::VectorXd& z) const override {
+    return cab_ * z;
+  }
+  Eigen::Vector3d jibTipDisplacement(const Eigen::VectorXd& z) const override {
+    return tip_ * z;
+  }
+
+ protected:
+  /// Build the rows for coordinates u = T z, T given by `modes` (nullptr: T = I).
+  StructureSupportBase(const TowerCraneStructure& s, double trolley_radius, double slew_angle,
+                       const Eigen::MatrixXd* modes);
+  Eigen::Vector3d r0_;
+  Eigen::Matrix<double, 3, Eigen::Dynamic> D_, cab_, tip_;
+};
+
+class ModalStructureSupport final : public StructureSupportBase {
+ public:
+  /// `modes` mass-normalised (phi^T M phi = I) modes of s; damping ratio zeta >= 0 per mode.
+  ModalStructureSupport(const TowerCraneStructure& s, const ModalBasis& modes, double zeta,
+                        double trolley_radius, double slew_angle);
+  int size() const override { return static_cast<int>(omega2_.size()); }
+  Eigen::VectorXd internalForce(const Eigen::VectorXd& z, const Eigen::VectorXd& zd,
+                                const Eigen::VectorXd& zdd) const override;
+  Eigen::Matrix3d setIterationWeights(double a, double c, double k) override;
+  Eigen::VectorXd solve(const Eigen::VectorXd& r) const override {
+    return r.cwiseQuotient(diagonal_);
+  }
+  double energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const override;
+
+ private:
+  Eigen::VectorXd omega2_, damping_;  ///< Omega^2, 2 zeta Omega
+  Eigen::VectorXd diagonal_;          ///< A_z (diagonal)
+};
+
+class FullStructureSupport final : public StructureSupportBase {
+ public:
+  /// Rayleigh damping matched to zeta at omega_low and omega_high [rad/s].
+  FullStructureSupport(const TowerCraneStructure& s, double zeta, double omega_low,
+                       double omega_high, double trolley_radius, double slew_angle);
+  int size() const override { return static_cast<int>(M_.rows()); }
+  Eigen::VectorXd internalForce(const Eigen::VectorXd& z, const Eigen::VectorXd& zd,
+                                const Eigen::VectorXd& zdd) const override;
+  Eigen::Matrix3d setIterationWeights(double a, double c, double k) override;
+  Eigen::VectorXd solve(const Eigen::VectorXd& r) const override { return llt_.solve(r); }
+  double energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const override;
+  double rayleighAlpha() const { return alpha_; }
+  double rayleighBeta() const { return beta_; }
+
+ private:
+  SparseMatrix M_, K_, A_;
+  double alpha_ = 0.0, beta_ = 0.0;
+  double weight_m_ = -1.0, weight_k_ = -1.0;  ///< A_z = weight_m M + weight_k K, cached
+  Eigen::Matrix3d G_ = Eigen::Matrix3d::Zero();
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
+};
+
+}  // namespace crane_twin

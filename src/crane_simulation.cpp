@@ -1,0 +1,147 @@
+#include "crane_twin/crane_simulation.hpp"
+
+#include <cmath>
+#include <iomanip>
+
+#include "crane_twin/config_reader.hpp"
+#include "crane_twin/structure_support.hpp"
+
+namespace crane_twin {
+
+const char* const kSeriesHeader =
+    "t,payload_x,payload_y,payload_z,payload_vx,payload_vy,payload_vz,cab_dx,cab_dy,cab_dz,"
+    "jib_tip_dx,jib_tip_dy,jib_tip_dz,trolley_x,trolley_y,trolley_z,rope_top_tension,"
+    "rope_length,slew_angle,trolley_radius,energy,constraint_error,subdomains";
+
+std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
+  const Scene& sc = model.scene;
+  if (!model.structure) return std::make_unique<FixedAnchor>(sc.anchor);
+  const TowerCraneStructure& st = *model.structure;
+  const double theta = sc.slew_angle;
+  if (sc.structure_model == "rigid") {
+    Eigen::Vector3d X = Eigen::Vector3d::Zero();
+    for (const auto& w : st.trolleyWeights(sc.trolley_radius)) X += w.weight * st.nodes[w.node];
+    return std::make_unique<FixedAnchor>(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()) * X);
+  }
+  if (sc.structure_modes >= st.free_dofs) {
+    throw InputError(sc.file + ": key 'structure.modes': must be below the structure's " +
+                     std::to_string(st.free_dofs) + " DOF, got " +
+                     std::to_string(sc.structure_modes));
+  }
+  ModalOptions opt;
+  opt.count = sc.structure_modes;
+  const ModalBasis b = lowestModes(st.K, st.M, opt);
+  if (sc.structure_model == "modal") {
+    return std::make_unique<ModalStructureSupport>(st, b, sc.structure_damping_ratio,
+                                                   sc.trolley_radius, theta);
+  }
+  // full: Rayleigh damping matched at the first and the structure.modes-th frequency (a single
+  // mode gives no second frequency: match at 10 w1 then).
+  const double w1 = std::sqrt(b.omega2(0));
+  const double wk = b.omega2.size() > 1 ? std::sqrt(b.omega2(b.omega2.size() - 1)) : 10.0 * w1;
+  return std::make_unique<FullStructureSupport>(st, sc.structure_damping_ratio, w1,
+                                                wk > w1 ? wk : 10.0 * w1, sc.trolley_radius,
+                                                theta);
+}
+
+CraneSimulation::CraneSimulation(const CraneModel& model) : model_(model) {
+  const Scene& sc = model.scene;
+  if (sc.rope.model != "full") {
+    throw InputError(sc.file + ": key 'rope.model': only 'full' runs in this version, got '" +
+                     sc.rope.model + "' (use --set rope.model=full)");
+  }
+  if (sc.rope.damping != 0.0) {
+    throw InputError(sc.file + ": key 'rope.damping': rope material damping is not built yet");
+  }
+  if (sc.slew_inertial_loads) {
+    throw InputError(sc.file + ": key 'slewing.inertial_loads': not built yet (no slewing drive)");
+  }
+  for (const auto& c : sc.commands) {
+    if (c.slew_rate != 0.0 || c.trolley_speed != 0.0 || c.hoist_speed != 0.0) {
+      throw InputError(sc.file + ": key 'commands': drives are not built yet");
+    }
+  }
+  const double trolleyMass = sc.crane ? sc.crane->trolley_mass : 0.0;
+  rope_ = std::make_unique<AncfRope>(sc.rope.elements, sc.rope.length,
+                                     model.rope.mass_per_length, model.rope.axial_stiffness,
+                                     model.rope.bending_stiffness, model.end_mass,
+                                     Eigen::Vector3d(0.0, 0.0, -sc.gravity), trolleyMass);
+  support_ = makeRopeSupport(model);
+  const GeneralizedAlpha ga = sc.integrator == "newmark"
+                                  ? GeneralizedAlpha::newmark()
+                                  : GeneralizedAlpha::fromRhoInf(sc.rho_inf);
+  solver_ = std::make_unique<FullOrderSolver>(*rope_, *support_, ga, sc.time_step);
+}
+
+CoupledState CraneSimulation::staticState(Eigen::Vector3d* holding_force) {
+  const Scene& sc = model_.scene;
+  return solver_->solveSwingEquilibrium(sc.swing_deg * M_PI / 180.0,
+                                        sc.swing_azimuth_deg * M_PI / 180.0, holding_force);
+}
+
+void CraneSimulation::initialize() {
+  const Scene& sc = model_.scene;
+  const double th = sc.swing_deg * M_PI / 180.0, az = sc.swing_azimuth_deg * M_PI / 180.0;
+  if (sc.initial_mode == "stress_free") {
+    const Eigen::Vector3d d(std::sin(th) * std::cos(az), std::sin(th) * std::sin(az),
+                            -std::cos(th));
+    state_ = CoupledState{};
+    state_.q = rope_->straight(support_->point(Eigen::VectorXd::Zero(support_->size())), d);
+    state_.v = Eigen::VectorXd::Zero(rope_->dofs());
+  } else {
+    state_ = staticState();
+  }
+  state_.v.segment<3>(rope_->dofs() - 6) += sc.payload_velocity;
+  state_.t = 0.0;
+  solver_->initializeAccelerations(state_);
+}
+
+void CraneSimulation::step() { solver_->step(state_); }
+
+void CraneSimulation::writeSeriesRow(std::ostream& out) const {
+  const Scene& sc = model_.scene;
+  const int e = rope_->dofs() - 6;
+  const Eigen::Vector3d p = state_.q.segment<3>(e), v = state_.v.segment<3>(e);
+  const Eigen::Vector3d cab = support_->cabDisplacement(state_.z);
+  const Eigen::Vector3d tip = support_->jibTipDisplacement(state_.z);
+  const Eigen::Vector3d tr = support_->point(state_.z);
+  auto put = [&out](const Eigen::Vector3d& x) { out << ',' << x.x() << ',' << x.y() << ',' << x.z(); };
+  out << std::setprecision(10) << state_.t;
+  put(p);
+  put(v);
+  put(cab);
+  put(tip);
+  put(tr);
+  out << ',' << solver_->topTension(state_) << ',' << sc.rope.length << ','
+      << (sc.crane ? sc.slew_angle : 0.0) << ',' << (sc.crane ? sc.trolley_radius : 0.0) << ','
+      << solver_->energy(state_) << ',' << solver_->constraintError(state_) << ",0\n";
+}
+
+void CraneSimulation::writeNodeRows(std::ostream& out) const {
+  for (int j = 0; j < rope_->nodes(); ++j) {
+    const Eigen::Vector3d r = AncfRope::nodePosition(state_.q, j);
+    out << std::setprecision(10) << state_.t << ',' << j << ',' << r.x() << ',' << r.y() << ','
+        << r.z() << '\n';
+  }
+}
+
+ModalBasis CraneSimulation::ropeModes(int count) {
+  const CoupledState eq = solver_->solveSwingEquilibrium(0.0, 0.0);
+  const int n = rope_->dofs();
+  Eigen::VectorXd Q;
+  std::vector<Eigen::Triplet<double>> t;
+  rope_->elasticForce(eq.q, Q, &t);
+  // Remove the top node's three position DOFs (held by the constraint).
+  std::vector<Eigen::Triplet<double>> tk;
+  for (const auto& x : t)
+    if (x.row() >= 3 && x.col() >= 3) tk.emplace_back(x.row() - 3, x.col() - 3, x.value());
+  SparseMatrix K(n - 3, n - 3);
+  K.setFromTriplets(tk.begin(), tk.end());
+  const SparseMatrix M = rope_->massMatrix().bottomRightCorner(n - 3, n - 3);
+  ModalOptions opt;
+  opt.count = count;
+  opt.shift = -1e-3;
+  return lowestModes(K, M, opt);
+}
+
+}  // namespace crane_twin

@@ -1,0 +1,117 @@
+#include "crane_twin/structure_support.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace crane_twin {
+
+namespace {
+
+// 3 x N rows with row_d . u = sum_i w_i u_{node_i, d} (translations of the weighted nodes).
+Eigen::Matrix<double, 3, Eigen::Dynamic> pointRows(const TowerCraneStructure& s,
+                                                    const std::vector<NodeLoad>& at) {
+  Eigen::Matrix<double, 3, Eigen::Dynamic> P = Eigen::MatrixXd::Zero(3, s.free_dofs);
+  for (const auto& w : at)
+    for (int d = 0; d < 3; ++d) {
+      const int e = s.dof_equation[6 * w.node + d];
+      if (e >= 0) P(d, e) += w.weight;
+    }
+  return P;
+}
+
+Eigen::Matrix3d slewRotation(double theta) {
+  return Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
+}  // namespace
+
+StructureSupportBase::StructureSupportBase(const TowerCraneStructure& s, double trolley_radius,
+                                           double slew_angle, const Eigen::MatrixXd* modes) {
+  const std::vector<NodeLoad> trolley = s.trolleyWeights(trolley_radius);
+  std::vector<NodeLoad> tip;
+  for (int n : s.jib_tip_nodes) tip.push_back({n, 1.0 / s.jib_tip_nodes.size()});
+  const auto Pt = pointRows(s, trolley), Pc = pointRows(s, {{s.cab_node, 1.0}}),
+             Pj = pointRows(s, tip);
+  Eigen::Vector3d X = Eigen::Vector3d::Zero();
+  for (const auto& w : trolley) X += w.weight * s.nodes[w.node];
+  const Eigen::Matrix3d R = slewRotation(slew_angle);
+  r0_ = R * X;
+  if (modes) {
+    D_ = R * (Pt * *modes);
+    cab_ = Pc * *modes;
+    tip_ = Pj * *modes;
+  } else {
+    D_ = R * Pt;
+    cab_ = Pc;
+    tip_ = Pj;
+  }
+}
+
+ModalStructureSupport::ModalStructureSupport(const TowerCraneStructure& s, const ModalBasis& b,
+                                             double zeta, double trolley_radius,
+                                             double slew_angle)
+    : StructureSupportBase(s, trolley_radius, slew_angle, &b.phi),
+      omega2_(b.omega2),
+      damping_(2.0 * zeta * b.omega2.cwiseSqrt()),
+      diagonal_(Eigen::VectorXd::Ones(b.omega2.size())) {
+  if (!(zeta >= 0.0)) throw std::invalid_argument("modal damping ratio must be >= 0");
+}
+
+// z'' + 2 zeta Omega z' + Omega^2 z (mass-normalised modes).
+Eigen::VectorXd ModalStructureSupport::internalForce(const Eigen::VectorXd& z,
+                                                     const Eigen::VectorXd& zd,
+                                                     const Eigen::VectorXd& zdd) const {
+  return zdd + damping_.cwiseProduct(zd) + omega2_.cwiseProduct(z);
+}
+
+Eigen::Matrix3d ModalStructureSupport::setIterationWeights(double a, double c, double k) {
+  diagonal_ = Eigen::VectorXd::Constant(omega2_.size(), a) + c * damping_ + k * omega2_;
+  return D_ * diagonal_.cwiseInverse().asDiagonal() * D_.transpose();
+}
+
+double ModalStructureSupport::energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const {
+  return 0.5 * zd.squaredNorm() + 0.5 * z.dot(omega2_.cwiseProduct(z));
+}
+
+FullStructureSupport::FullStructureSupport(const TowerCraneStructure& s, double zeta,
+                                           double omega_low, double omega_high,
+                                           double trolley_radius, double slew_angle)
+    : StructureSupportBase(s, trolley_radius, slew_angle, nullptr), M_(s.M), K_(s.K) {
+  if (!(zeta >= 0.0) || !(omega_low > 0.0) || !(omega_high > omega_low)) {
+    throw std::invalid_argument("Rayleigh damping needs zeta >= 0 and 0 < omega_low < omega_high");
+  }
+  // zeta(w) = alpha / (2 w) + beta w / 2, equal to zeta at both frequencies.
+  alpha_ = 2.0 * zeta * omega_low * omega_high / (omega_low + omega_high);
+  beta_ = 2.0 * zeta / (omega_low + omega_high);
+  A_ = M_ + K_;  // union pattern; values rewritten per weight set
+  llt_.analyzePattern(A_);
+}
+
+Eigen::VectorXd FullStructureSupport::internalForce(const Eigen::VectorXd& z,
+                                                    const Eigen::VectorXd& zd,
+                                                    const Eigen::VectorXd& zdd) const {
+  return M_ * (zdd + alpha_ * zd) + K_ * (z + beta_ * zd);
+}
+
+Eigen::Matrix3d FullStructureSupport::setIterationWeights(double a, double c, double k) {
+  // A_z = a M + c (alpha M + beta K) + k K.
+  const double wm = a + c * alpha_, wk = k + c * beta_;
+  if (wm == weight_m_ && wk == weight_k_) return G_;
+  A_ = wm * M_ + wk * K_;
+  llt_.factorize(A_);
+  if (llt_.info() != Eigen::Success) {
+    throw std::runtime_error("structure iteration matrix factorisation failed");
+  }
+  const Eigen::MatrixXd X = llt_.solve(Eigen::MatrixXd(D_.transpose()));
+  G_ = D_ * X;
+  weight_m_ = wm;
+  weight_k_ = wk;
+  return G_;
+}
+
+double FullStructureSupport::energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const {
+  return 0.5 * zd.dot(M_ * zd) + 0.5 * z.dot(K_ * z);
+}
+
+}  // namespace crane_twin
