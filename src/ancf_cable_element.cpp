@@ -157,10 +157,17 @@ void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12&
 
     // Axial: phi = EA/2 (g - 1)^2; phi_a = EA (1 - 1/g) a;
     // phi_aa = EA [(1 - 1/g) I + a a^T / g^3].
-    addVec(sx, EA * (1.0 - 1.0 / g) * a, w, Q);
-    if (K) addOuter(sx, sx, EA * ((1.0 - 1.0 / g) * I3 + a * a.transpose() / (h * g)), w, *K);
-
-    if (EI == 0.0) continue;
+    // The Hessian of the energy density in (a, b) = (r_x, r_xx) is the symmetric 6 x 6
+    // P = [Paa Pab; Pab^T Pbb]; block (i, j) of the tangent gains
+    // w (sx_i sx_j Paa + sx_i sxx_j Pab + sxx_i sx_j Pab^T + sxx_i sxx_j Pbb), computed for
+    // j >= i only and mirrored (the profiled hot spot was one 3 x 3 update per term and pair).
+    Eigen::Matrix3d Paa;
+    if (K) Paa = EA * ((1.0 - 1.0 / g) * I3 + a * a.transpose() / (h * g));
+    if (EI == 0.0) {
+      addVec(sx, EA * (1.0 - 1.0 / g) * a, w, Q);
+      if (K) addOuter(sx, sx, Paa, w, *K);
+      continue;
+    }
     // Bending: phi = EI/2 f h^-3, f = |a x b|^2 = (a.a)(b.b) - (a.b)^2, h = a.a.
     const double ab = a.dot(b), bb = b.dot(b);
     const double f = h * bb - ab * ab;
@@ -169,21 +176,25 @@ void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12&
     const Eigen::Vector3d ha = 2.0 * a;
     const double h3 = 1.0 / (h * h * h), h4 = h3 / h, h5 = h4 / h;
     const double c = 0.5 * EI;
-    addVec(sx, c * (fa * h3 - 3.0 * f * h4 * ha), w, Q);
+    addVec(sx, EA * (1.0 - 1.0 / g) * a + c * (fa * h3 - 3.0 * f * h4 * ha), w, Q);
     addVec(sxx, c * fb * h3, w, Q);
     if (!K) continue;
     const Eigen::Matrix3d faa = 2.0 * bb * I3 - 2.0 * b * b.transpose();
     const Eigen::Matrix3d fbb = 2.0 * h * I3 - 2.0 * a * a.transpose();
     const Eigen::Matrix3d fab = 4.0 * a * b.transpose() - 2.0 * b * a.transpose() - 2.0 * ab * I3;
-    const Eigen::Matrix3d paa =
-        c * (faa * h3 - 3.0 * h4 * (fa * ha.transpose() + ha * fa.transpose()) +
-             12.0 * f * h5 * ha * ha.transpose() - 6.0 * f * h4 * I3);
-    const Eigen::Matrix3d pab = c * (fab * h3 - 3.0 * h4 * ha * fb.transpose());
-    const Eigen::Matrix3d pbb = c * fbb * h3;
-    addOuter(sx, sx, paa, w, *K);
-    addOuter(sx, sxx, pab, w, *K);
-    addOuter(sxx, sx, pab.transpose(), w, *K);
-    addOuter(sxx, sxx, pbb, w, *K);
+    Paa += c * (faa * h3 - 3.0 * h4 * (fa * ha.transpose() + ha * fa.transpose()) +
+                12.0 * f * h5 * ha * ha.transpose() - 6.0 * f * h4 * I3);
+    const Eigen::Matrix3d Pab = c * (fab * h3 - 3.0 * h4 * ha * fb.transpose());
+    const Eigen::Matrix3d Pbb = c * fbb * h3;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i; j < 4; ++j)
+        K->block<3, 3>(3 * i, 3 * j) +=
+            w * ((sx(i) * sx(j)) * Paa + (sx(i) * sxx(j)) * Pab +
+                 (sxx(i) * sx(j)) * Pab.transpose() + (sxx(i) * sxx(j)) * Pbb);
+  }
+  if (K && EI != 0.0) {
+    for (int i = 1; i < 4; ++i)
+      for (int j = 0; j < i; ++j) K->block<3, 3>(3 * i, 3 * j) = K->block<3, 3>(3 * j, 3 * i).transpose();
   }
 }
 
