@@ -135,7 +135,7 @@ CoupledState FullOrderSolver::solveStatic(const Eigen::VectorXd& q_guess,
     if (dmax > 0.1 * rope_.length()) scale = 0.1 * rope_.length() / dmax;
     s.q += scale * dx.head(n);
     s.lambda += scale * dx.tail<3>();
-    if (m > 0) s.z += scale * (Azr + support_.solve(support_.pointForceToCoordinates(dx.tail<3>())));
+    if (m > 0) s.z += scale * (Azr + support_.solvePointForce(dx.tail<3>()));
     if (!s.q.allFinite() || !s.z.allFinite()) throw NumericalFailure("static solve: non-finite state");
     if (scale == 1.0 && dmax < 1e-11 * std::max(1.0, rope_.length())) return s;
   }
@@ -211,7 +211,7 @@ void FullOrderSolver::initializeAccelerations(CoupledState& s) {
   s.qdd = x.head(n);
   s.a = s.qdd;
   s.lambda = x.tail<3>();
-  if (m > 0) s.zdd = Azr + support_.solve(support_.pointForceToCoordinates(s.lambda));
+  if (m > 0) s.zdd = Azr + support_.solvePointForce(s.lambda);
   s.za = s.zdd;
 }
 
@@ -257,7 +257,7 @@ void FullOrderSolver::step(CoupledState& s) {
     s.lambda += dx.tail<3>() / bh2;
     double dmax = dq.cwiseAbs().maxCoeff();
     if (m > 0) {
-      const Eigen::VectorXd dz = Azr + support_.solve(support_.pointForceToCoordinates(dx.tail<3>()));
+      const Eigen::VectorXd dz = Azr + support_.solvePointForce(dx.tail<3>());
       s.z += dz;
       s.zd += gammaP * dz;
       s.zdd += betaP * dz;

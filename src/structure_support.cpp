@@ -103,8 +103,8 @@ Eigen::Matrix3d FullStructureSupport::setIterationWeights(double a, double c, do
   if (llt_.info() != Eigen::Success) {
     throw std::runtime_error("structure iteration matrix factorisation failed");
   }
-  const Eigen::MatrixXd X = llt_.solve(Eigen::MatrixXd(D_.transpose()));
-  G_ = D_ * X;
+  X_ = llt_.solve(Eigen::MatrixXd(D_.transpose()));
+  G_ = D_ * X_;
   weight_m_ = wm;
   weight_k_ = wk;
   return G_;

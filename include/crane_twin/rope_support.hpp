@@ -36,6 +36,8 @@ class RopeSupport {
   virtual Eigen::Matrix3d setIterationWeights(double a, double c, double k) = 0;
   /// A_z^-1 r for the weights last set.
   virtual Eigen::VectorXd solve(const Eigen::VectorXd& r) const = 0;
+  /// A_z^-1 D^T f for the weights last set (precomputed columns: no solve).
+  virtual Eigen::VectorXd solvePointForce(const Eigen::Vector3d& f) const = 0;
   /// 1/2 z'^T M_z z' + 1/2 z^T K_z z [J] (strain energy measured from the self-weight state).
   virtual double energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const = 0;
   /// Displacement of the cab and jib-tip reference points from the undeformed structure,
@@ -64,6 +66,9 @@ class FixedAnchor final : public RopeSupport {
     return Eigen::Matrix3d::Zero();
   }
   Eigen::VectorXd solve(const Eigen::VectorXd&) const override { return Eigen::VectorXd(); }
+  Eigen::VectorXd solvePointForce(const Eigen::Vector3d&) const override {
+    return Eigen::VectorXd();
+  }
   double energy(const Eigen::VectorXd&, const Eigen::VectorXd&) const override { return 0.0; }
   Eigen::Vector3d cabDisplacement(const Eigen::VectorXd&) const override {
     return Eigen::Vector3d::Zero();

@@ -62,6 +62,9 @@ class ModalStructureSupport final : public StructureSupportBase {
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const override {
     return r.cwiseQuotient(diagonal_);
   }
+  Eigen::VectorXd solvePointForce(const Eigen::Vector3d& f) const override {
+    return (D_.transpose() * f).cwiseQuotient(diagonal_);
+  }
   double energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const override;
 
  private:
@@ -79,6 +82,7 @@ class FullStructureSupport final : public StructureSupportBase {
                                 const Eigen::VectorXd& zdd) const override;
   Eigen::Matrix3d setIterationWeights(double a, double c, double k) override;
   Eigen::VectorXd solve(const Eigen::VectorXd& r) const override { return llt_.solve(r); }
+  Eigen::VectorXd solvePointForce(const Eigen::Vector3d& f) const override { return X_ * f; }
   double energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const override;
   double rayleighAlpha() const { return alpha_; }
   double rayleighBeta() const { return beta_; }
@@ -88,6 +92,7 @@ class FullStructureSupport final : public StructureSupportBase {
   double alpha_ = 0.0, beta_ = 0.0;
   double weight_m_ = -1.0, weight_k_ = -1.0;  ///< A_z = weight_m M + weight_k K, cached
   Eigen::Matrix3d G_ = Eigen::Matrix3d::Zero();
+  Eigen::Matrix<double, Eigen::Dynamic, 3> X_;  ///< A_z^-1 D^T
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
 };
 
