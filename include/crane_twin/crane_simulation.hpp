@@ -22,8 +22,9 @@ extern const char* const kSeriesHeader;
 
 class CraneSimulation {
  public:
-  /// Builds the rope and its support. Throws InputError for what this version cannot run
-  /// (rope.model other than full, drives, rope damping), naming the key.
+  /// Builds the rope and its support. Integrates at full order whatever rope.model says (the
+  /// reduced model starts from this model's equilibrium and linearises it). Throws InputError
+  /// for what this version cannot run (pendulum rope, drives, rope damping), naming the key.
   explicit CraneSimulation(const CraneModel& model);
 
   /// Build the initial state of SPEC 2 (t = 0).

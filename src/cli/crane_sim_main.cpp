@@ -102,6 +102,10 @@ std::ofstream openOutput(const std::string& path, const char* option) {
 
 int runRun(const SceneArgs& a, const RunArgs& r) {
   const ct::CraneModel m = ct::buildCraneModel(ct::loadScene(a.scene, a.sets));
+  if (m.scene.rope.model != "full") {
+    throw ct::InputError(m.scene.file + ": key 'rope.model': only 'full' runs in this version, got '" +
+                         m.scene.rope.model + "' (use --set rope.model=full)");
+  }
   ct::CraneSimulation sim(m);
   std::ofstream series, nodes;
   if (!r.out.empty()) series = openOutput(r.out, "--out");
