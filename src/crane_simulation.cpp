@@ -8,11 +8,6 @@
 
 namespace crane_twin {
 
-const char* const kSeriesHeader =
-    "t,payload_x,payload_y,payload_z,payload_vx,payload_vy,payload_vz,cab_dx,cab_dy,cab_dz,"
-    "jib_tip_dx,jib_tip_dy,jib_tip_dz,trolley_x,trolley_y,trolley_z,rope_top_tension,"
-    "rope_length,slew_angle,trolley_radius,energy,constraint_error,subdomains";
-
 std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
   const Scene& sc = model.scene;
   if (!model.structure) return std::make_unique<FixedAnchor>(sc.anchor);
@@ -78,51 +73,48 @@ CoupledState CraneSimulation::staticState(Eigen::Vector3d* holding_force) {
                                         sc.swing_azimuth_deg * M_PI / 180.0, holding_force);
 }
 
-void CraneSimulation::initialize() {
+CoupledState CraneSimulation::initialState() {
   const Scene& sc = model_.scene;
   const double th = sc.swing_deg * M_PI / 180.0, az = sc.swing_azimuth_deg * M_PI / 180.0;
+  CoupledState s;
   if (sc.initial_mode == "stress_free") {
     const Eigen::Vector3d d(std::sin(th) * std::cos(az), std::sin(th) * std::sin(az),
                             -std::cos(th));
-    state_ = CoupledState{};
-    state_.q = rope_->straight(support_->point(Eigen::VectorXd::Zero(support_->size())), d);
-    state_.v = Eigen::VectorXd::Zero(rope_->dofs());
+    s.q = rope_->straight(support_->point(Eigen::VectorXd::Zero(support_->size())), d);
+    s.v = Eigen::VectorXd::Zero(rope_->dofs());
   } else {
-    state_ = staticState();
+    s = staticState();
   }
-  state_.v.segment<3>(rope_->dofs() - 6) += sc.payload_velocity;
-  state_.t = 0.0;
-  solver_->initializeAccelerations(state_);
+  s.v.segment<3>(rope_->dofs() - 6) += sc.payload_velocity;
+  s.t = 0.0;
+  solver_->initializeAccelerations(s);
+  return s;
 }
+
+void CraneSimulation::initialize() { state_ = initialState(); }
 
 void CraneSimulation::step() { solver_->step(state_); }
 
-void CraneSimulation::writeSeriesRow(std::ostream& out) const {
+SeriesValues CraneSimulation::seriesOf(const CoupledState& s) const {
   const Scene& sc = model_.scene;
   const int e = rope_->dofs() - 6;
-  const Eigen::Vector3d p = state_.q.segment<3>(e), v = state_.v.segment<3>(e);
-  const Eigen::Vector3d cab = support_->cabDisplacement(state_.z);
-  const Eigen::Vector3d tip = support_->jibTipDisplacement(state_.z);
-  const Eigen::Vector3d tr = support_->point(state_.z);
-  auto put = [&out](const Eigen::Vector3d& x) { out << ',' << x.x() << ',' << x.y() << ',' << x.z(); };
-  out << std::setprecision(10) << state_.t;
-  put(p);
-  put(v);
-  put(cab);
-  put(tip);
-  put(tr);
-  out << ',' << solver_->topTension(state_) << ',' << sc.rope.length << ','
-      << (sc.crane ? sc.slew_angle : 0.0) << ',' << (sc.crane ? sc.trolley_radius : 0.0) << ','
-      << solver_->energy(state_) << ',' << solver_->constraintError(state_) << ",0\n";
+  SeriesValues v;
+  v.t = s.t;
+  v.payload = s.q.segment<3>(e);
+  v.payload_velocity = s.v.segment<3>(e);
+  v.cab = support_->cabDisplacement(s.z);
+  v.jib_tip = support_->jibTipDisplacement(s.z);
+  v.trolley = support_->point(s.z);
+  v.rope_top_tension = ropeTopTension(*rope_, s);
+  v.rope_length = sc.rope.length;
+  v.slew_angle = sc.crane ? sc.slew_angle : 0.0;
+  v.trolley_radius = sc.crane ? sc.trolley_radius : 0.0;
+  v.energy = mechanicalEnergy(*rope_, *support_, s);
+  v.constraint_error = (s.q.head<3>() - support_->point(s.z)).norm();
+  return v;
 }
 
-void CraneSimulation::writeNodeRows(std::ostream& out) const {
-  for (int j = 0; j < rope_->nodes(); ++j) {
-    const Eigen::Vector3d r = AncfRope::nodePosition(state_.q, j);
-    out << std::setprecision(10) << state_.t << ',' << j << ',' << r.x() << ',' << r.y() << ','
-        << r.z() << '\n';
-  }
-}
+SeriesValues CraneSimulation::series() const { return seriesOf(state_); }
 
 ModalBasis CraneSimulation::ropeModes(int count) {
   const CoupledState eq = solver_->solveSwingEquilibrium(0.0, 0.0);

@@ -284,14 +284,20 @@ void FullOrderSolver::step(CoupledState& s) {
   s.newton_iterations = it;
 }
 
-double FullOrderSolver::energy(const CoupledState& s) const {
-  return 0.5 * s.v.dot(rope_.massMatrix() * s.v) + rope_.elasticEnergy(s.q) -
-         rope_.gravityForce().dot(s.q) + support_.energy(s.z, s.zd);
+double mechanicalEnergy(const AncfRope& rope, const RopeSupport& support, const CoupledState& s) {
+  return 0.5 * s.v.dot(rope.massMatrix() * s.v) + rope.elasticEnergy(s.q) -
+         rope.gravityForce().dot(s.q) + support.energy(s.z, s.zd);
 }
 
-double FullOrderSolver::topTension(const CoupledState& s) const {
-  return (s.lambda + rope_.topMass() * (s.qdd.head<3>() - rope_.gravity())).norm();
+double ropeTopTension(const AncfRope& rope, const CoupledState& s) {
+  return (s.lambda + rope.topMass() * (s.qdd.head<3>() - rope.gravity())).norm();
 }
+
+double FullOrderSolver::energy(const CoupledState& s) const {
+  return mechanicalEnergy(rope_, support_, s);
+}
+
+double FullOrderSolver::topTension(const CoupledState& s) const { return ropeTopTension(rope_, s); }
 
 double FullOrderSolver::constraintError(const CoupledState& s) const {
   return (s.q.head<3>() - support_.point(s.z)).norm();

@@ -14,32 +14,35 @@
 #include "crane_twin/full_order_solver.hpp"
 #include "crane_twin/modal_analysis.hpp"
 #include "crane_twin/rope_support.hpp"
+#include "crane_twin/simulation.hpp"
 
 namespace crane_twin {
 
-/// SPEC 3.1 time-series columns, in order.
-extern const char* const kSeriesHeader;
-
-class CraneSimulation {
+class CraneSimulation final : public Simulation {
  public:
   /// Builds the rope and its support. Integrates at full order whatever rope.model says (the
   /// reduced model starts from this model's equilibrium and linearises it). Throws InputError
   /// for what this version cannot run (pendulum rope, drives, rope damping), naming the key.
   explicit CraneSimulation(const CraneModel& model);
 
-  /// Build the initial state of SPEC 2 (t = 0).
-  void initialize();
-  void step();
+  void initialize() override;
+  void step() override;
+  double time() const override { return state_.t; }
+  SeriesValues series() const override;
+  int ropeNodes() const override { return rope_->nodes(); }
+  Eigen::Vector3d ropeNode(int j) const override { return AncfRope::nodePosition(state_.q, j); }
+  const CraneModel& model() const { return model_; }
   const CoupledState& state() const { return state_; }
+  RopeSupport& support() { return *support_; }
   const AncfRope& rope() const { return *rope_; }
   const RopeSupport& support() const { return *support_; }
   const FullOrderSolver& solver() const { return *solver_; }
 
-  /// Write one CSV row of the SPEC 3.1 columns for the current state.
-  void writeSeriesRow(std::ostream& out) const;
-  /// Write `t,node,x,y,z` rows for every rope node.
-  void writeNodeRows(std::ostream& out) const;
+  /// Output quantities of a full-coordinate state (also used by the reduced model).
+  SeriesValues seriesOf(const CoupledState& s) const;
 
+  /// The initial full-order state of SPEC 2 (what initialize() starts from).
+  CoupledState initialState();
   /// Static equilibrium of the scene (SPEC 2 `equilibrium` start, holding force included).
   CoupledState staticState(Eigen::Vector3d* holding_force = nullptr);
   /// Rope modes (with the end mass) linearised at the static equilibrium without holding force:

@@ -61,6 +61,13 @@ struct NewtonSettings {
   int max_iterations = 30;
 };
 
+/// Total mechanical energy of a state: 1/2 v^T M v + U(q) - F_g^T q (gravity potential, zero at
+/// q = 0) plus the support's kinetic and strain energy [J].
+double mechanicalEnergy(const AncfRope& rope, const RopeSupport& support, const CoupledState& s);
+/// Rope top tension [N]: the force between rope and trolley, |lambda + m_top (r_0'' - g)| (the
+/// support force less the trolley mass's weight and inertia).
+double ropeTopTension(const AncfRope& rope, const CoupledState& s);
+
 class FullOrderSolver {
  public:
   /// Rope and support are referenced, not copied: they must outlive the solver.

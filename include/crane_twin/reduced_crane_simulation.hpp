@@ -1,0 +1,34 @@
+// A scene run with the reduced rope (rope.model: reduced, SPEC 1.6): the same rope, support and
+// initial equilibrium as the full-order model (CraneSimulation), integrated by
+// ReducedOrderSolver.
+#pragma once
+
+#include "crane_twin/crane_simulation.hpp"
+#include "crane_twin/reduced_order_solver.hpp"
+
+namespace crane_twin {
+
+/// Rope modes kept for a scene: rope.mode_count if set, else mode_fraction of the rope DOF less
+/// the three translations, at least 1 (SPEC 1.6). Throws InputError naming the key.
+int keptRopeModes(const CraneModel& model);
+
+class ReducedCraneSimulation final : public Simulation {
+ public:
+  /// `warm_updates` false recomputes the modes from scratch at every switch.
+  explicit ReducedCraneSimulation(const CraneModel& model, bool warm_updates = true);
+  void initialize() override;
+  void step() override { solver_->step(); }
+  double time() const override { return solver_->state().t; }
+  SeriesValues series() const override;
+  int ropeNodes() const override { return full_.ropeNodes(); }
+  Eigen::Vector3d ropeNode(int j) const override { return solver_->nodePosition(j); }
+  int subdomains() const override { return solver_->statistics().subdomains; }
+  double modeUpdateSeconds() const override { return solver_->statistics().mode_update_seconds; }
+  const ReducedOrderSolver& solver() const { return *solver_; }
+
+ private:
+  CraneSimulation full_;  ///< model setup and initial state
+  std::unique_ptr<ReducedOrderSolver> solver_;
+};
+
+}  // namespace crane_twin

@@ -1,0 +1,50 @@
+// What the CLI, the sweep and (later) the ROS node need of a running scene, whichever model
+// integrates it: step it, read the SPEC 3.1 output quantities, write the CSV rows.
+#pragma once
+
+#include <Eigen/Dense>
+#include <memory>
+#include <ostream>
+
+namespace crane_twin {
+
+struct CraneModel;
+
+/// One row of the SPEC 3.1 time series.
+struct SeriesValues {
+  double t = 0.0;
+  Eigen::Vector3d payload = Eigen::Vector3d::Zero(), payload_velocity = Eigen::Vector3d::Zero();
+  Eigen::Vector3d cab = Eigen::Vector3d::Zero(), jib_tip = Eigen::Vector3d::Zero();
+  Eigen::Vector3d trolley = Eigen::Vector3d::Zero();
+  double rope_top_tension = 0.0, rope_length = 0.0, slew_angle = 0.0, trolley_radius = 0.0;
+  double energy = 0.0, constraint_error = 0.0;
+  int subdomains = 0;
+};
+
+/// SPEC 3.1 time-series columns, in order.
+extern const char* const kSeriesHeader;
+void writeSeriesRow(std::ostream& out, const SeriesValues& v);
+
+class Simulation {
+ public:
+  virtual ~Simulation() = default;
+  /// Build the initial state of SPEC 2 (t = 0).
+  virtual void initialize() = 0;
+  /// One time step. Throws NumericalFailure.
+  virtual void step() = 0;
+  virtual double time() const = 0;
+  virtual SeriesValues series() const = 0;
+  virtual int ropeNodes() const = 0;
+  virtual Eigen::Vector3d ropeNode(int j) const = 0;
+  /// Subdomains started and wall time in rope mode updates (0 for a full-order run).
+  virtual int subdomains() const { return 0; }
+  virtual double modeUpdateSeconds() const { return 0.0; }
+
+  /// `t,node,x,y,z` rows for every rope node.
+  void writeNodeRows(std::ostream& out) const;
+};
+
+/// The simulation the scene's rope.model asks for (full or reduced). Throws InputError.
+std::unique_ptr<Simulation> makeSimulation(const CraneModel& model);
+
+}  // namespace crane_twin

@@ -1,0 +1,53 @@
+#include "crane_twin/reduced_crane_simulation.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "crane_twin/config_reader.hpp"
+
+namespace crane_twin {
+
+int keptRopeModes(const CraneModel& model) {
+  const Scene& sc = model.scene;
+  const int n = model.ropeDofs();
+  if (sc.rope.mode_count > 0) {
+    if (sc.rope.mode_count > n - 3) {
+      throw InputError(sc.file + ": key 'rope.mode_count': at most " + std::to_string(n - 3) +
+                       " (rope DOF less the top node's 3 positions), got " +
+                       std::to_string(sc.rope.mode_count));
+    }
+    return sc.rope.mode_count;
+  }
+  return std::max(1, std::min(n - 3, static_cast<int>(std::lround(sc.rope.mode_fraction * n)) - 3));
+}
+
+namespace {
+ReducedSettings settingsFor(const CraneModel& model, bool warm) {
+  ReducedSettings s;
+  s.kept_modes = keptRopeModes(model);
+  s.delta = model.scene.rope.subdomain_delta;
+  s.warm_updates = warm;
+  return s;
+}
+const GeneralizedAlpha schemeFor(const Scene& sc) {
+  return sc.integrator == "newmark" ? GeneralizedAlpha::newmark()
+                                    : GeneralizedAlpha::fromRhoInf(sc.rho_inf);
+}
+}  // namespace
+
+ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model, bool warm_updates)
+    : full_(model) {
+  solver_ = std::make_unique<ReducedOrderSolver>(full_.rope(), full_.support(),
+                                                 schemeFor(model.scene), model.scene.time_step,
+                                                 settingsFor(model, warm_updates));
+}
+
+void ReducedCraneSimulation::initialize() { solver_->initialize(full_.initialState()); }
+
+SeriesValues ReducedCraneSimulation::series() const {
+  SeriesValues v = full_.seriesOf(solver_->fullState());
+  v.subdomains = solver_->statistics().subdomains;
+  return v;
+}
+
+}  // namespace crane_twin

@@ -1,0 +1,299 @@
+#include "crane_twin/reduced_order_solver.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace crane_twin {
+
+namespace {
+
+// T^T x: sum of the node position components (the translations' generalised force).
+Eigen::Vector3d translationSum(const Eigen::VectorXd& x) {
+  Eigen::Vector3d s = Eigen::Vector3d::Zero();
+  for (int j = 0; 6 * j < x.size(); ++j) s += x.segment<3>(6 * j);
+  return s;
+}
+
+std::string at(double t) { return "t = " + std::to_string(t) + " s"; }
+
+}  // namespace
+
+ReducedOrderSolver::ReducedOrderSolver(const AncfRope& rope, RopeSupport& support,
+                                       const GeneralizedAlpha& scheme, double time_step,
+                                       const ReducedSettings& settings)
+    : rope_(rope), support_(support), ga_(scheme), h_(time_step), settings_(settings) {
+  const int n = rope_.dofs();
+  if (settings_.kept_modes < 1 || settings_.kept_modes > n - 3) {
+    throw std::invalid_argument("reduced rope: kept modes must be in 1.." + std::to_string(n - 3) +
+                                ", got " + std::to_string(settings_.kept_modes));
+  }
+  if (!(settings_.delta > 0.0)) throw std::invalid_argument("reduced rope: delta must be > 0");
+  if (!(time_step > 0.0)) throw std::invalid_argument("time step must be positive");
+  settings_.modes.kept = settings_.kept_modes;
+}
+
+Eigen::VectorXd ReducedOrderSolver::expand(const Eigen::VectorXd& y) const {
+  const int r = static_cast<int>(phi_.cols());
+  Eigen::VectorXd x = phi_ * y.head(r);
+  const Eigen::Vector3d ub = y.tail<3>();
+  for (int j = 0; j < rope_.nodes(); ++j) x.segment<3>(6 * j) += ub;
+  return x;
+}
+
+Eigen::VectorXd ReducedOrderSolver::project(const Eigen::VectorXd& x) const {
+  // M_r w = [Phi_c^T M x; T^T M x] with M_r = [I Mcb; Mcb^T Mbb]: eliminate w_c = g_c - Mcb w_b.
+  const int r = static_cast<int>(phi_.cols());
+  const Eigen::VectorXd Mx = rope_.massMatrix() * x;
+  const Eigen::VectorXd gc = phi_.transpose() * Mx;
+  const Eigen::Vector3d gb = translationSum(Mx);
+  const Eigen::Matrix3d S = Mbb_ - Mcb_.transpose() * Mcb_;
+  Eigen::VectorXd w(r + 3);
+  w.tail<3>() = S.ldlt().solve(gb - Mcb_.transpose() * gc);
+  w.head(r) = gc - Mcb_ * w.tail<3>();
+  return w;
+}
+
+void ReducedOrderSolver::startSubdomain(const Eigen::VectorXd& e) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const int n = rope_.dofs();
+  Eigen::VectorXd Q;
+  std::vector<Eigen::Triplet<double>> trip;
+  rope_.elasticForce(e, Q, &trip);
+  SparseMatrix K(n, n);
+  K.setFromTriplets(trip.begin(), trip.end());
+  const SparseMatrix& M = rope_.massMatrix();
+  const bool first = modes_.phi.size() == 0;
+  if (first || !settings_.warm_updates) {
+    modes_ = coldRopeModes(K, M, settings_.modes);
+  } else {
+    try {
+      modes_ = warmRopeModes(K, M, modes_, settings_.modes);
+    } catch (const std::runtime_error&) {
+      ++stats_.cold_fallbacks;
+      modes_ = coldRopeModes(K, M, settings_.modes);
+    }
+  }
+  const int r = settings_.kept_modes;
+  phi_ = modes_.phi.leftCols(r);
+  omega2_ = modes_.omega2.head(r);
+  if (!phi_.allFinite() || !omega2_.allFinite()) {
+    throw NumericalFailure(at(s_.t) + ": rope mode update gave non-finite modes");
+  }
+  // T columns: unit translation fields; M T is the mass-weighted field.
+  Eigen::MatrixXd MT(n, 3);
+  for (int d = 0; d < 3; ++d) {
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
+    for (int j = 0; j < rope_.nodes(); ++j) u(6 * j + d) = 1.0;
+    MT.col(d) = M * u;
+  }
+  Mcb_ = phi_.transpose() * MT;
+  for (int d = 0; d < 3; ++d) Mbb_.col(d) = translationSum(MT.col(d));
+  const Eigen::VectorXd g = rope_.gravityForce() - Q;
+  f_.resize(r + 3);
+  f_.head(r) = phi_.transpose() * g;
+  f_.tail<3>() = translationSum(g);
+  node_rows_.resize(3 * rope_.nodes(), r);
+  for (int j = 0; j < rope_.nodes(); ++j) node_rows_.middleRows<3>(3 * j) = phi_.middleRows<3>(6 * j);
+  e_m_ = e;
+  G_step_.setConstant(std::nan(""));  // forces the step system's refactorisation
+  ++stats_.subdomains;
+  stats_.max_mode_residual =
+      std::max(stats_.max_mode_residual, ropeModeResidual(K, M, modes_, settings_.modes.shift));
+  stats_.mode_update_seconds +=
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+Eigen::VectorXd ReducedOrderSolver::solveWeighted(double a, double c, double k,
+                                                  const Eigen::VectorXd& ry,
+                                                  const Eigen::VectorXd& rz,
+                                                  const Eigen::Vector3d& rc, Eigen::VectorXd& dz,
+                                                  Eigen::Vector3d& dmu, bool cached) {
+  const int r = static_cast<int>(phi_.cols()), m = support_.size();
+  const Eigen::VectorXd d = Eigen::VectorXd::Constant(r, a) + k * omega2_;
+  const Eigen::VectorXd rcd = ry.head(r).cwiseQuotient(d);
+  // Row b after eliminating p_c; row lambda after eliminating z.
+  const Eigen::Vector3d rb = ry.tail<3>() - a * Mcb_.transpose() * rcd;
+  Eigen::VectorXd Azr;
+  Eigen::Vector3d rl = rc;
+  if (m > 0) {
+    Azr = support_.solve(rz);
+    rl += support_.pointMotion(Azr);
+  }
+  Eigen::Matrix<double, 6, 1> rhs;
+  rhs << rb, rl;
+  Eigen::Matrix<double, 6, 1> x;
+  if (cached) {
+    x = kkt_lu_.solve(rhs);
+  } else {
+    const Eigen::Matrix3d G = support_.setIterationWeights(a, c, k);
+    Eigen::Matrix<double, 6, 6> A;
+    A.topLeftCorner<3, 3>() =
+        a * Mbb_ - a * a * Mcb_.transpose() * d.cwiseInverse().asDiagonal() * Mcb_;
+    A.topRightCorner<3, 3>().setIdentity();
+    A.bottomLeftCorner<3, 3>().setIdentity();
+    A.bottomRightCorner<3, 3>() = -G;
+    x = A.partialPivLu().solve(rhs);
+  }
+  Eigen::VectorXd dy(r + 3);
+  dy.tail<3>() = x.head<3>();
+  dy.head(r) = rcd - a * (Mcb_ * x.head<3>()).cwiseQuotient(d);
+  dmu = x.tail<3>();
+  if (m > 0) dz = Azr + support_.solvePointForce(dmu);
+  return dy;
+}
+
+void ReducedOrderSolver::initializeAccelerations() {
+  const int r = static_cast<int>(phi_.cols()), m = support_.size();
+  Eigen::VectorXd ry = f_;
+  ry.head(r) -= omega2_.cwiseProduct(s_.y.head(r));
+  Eigen::VectorXd rz, dz;
+  if (m > 0) rz = -support_.internalForce(s_.z, s_.zd, Eigen::VectorXd::Zero(m));
+  Eigen::Vector3d mu;
+  s_.ydd = solveWeighted(1.0, 0.0, 0.0, ry, rz, Eigen::Vector3d::Zero(), dz, mu, false);
+  s_.ya = s_.ydd;
+  s_.lambda = mu;
+  s_.zdd = m > 0 ? dz : Eigen::VectorXd();
+  s_.za = s_.zdd;
+}
+
+void ReducedOrderSolver::initialize(const CoupledState& full) {
+  modes_ = RopeModes{};
+  stats_ = ReducedStatistics{};
+  s_ = ReducedState{};
+  s_.t = full.t;
+  startSubdomain(full.q);
+  // The first basis is model setup (like the structure's modes), not a mode update.
+  stats_.setup_mode_seconds = stats_.mode_update_seconds;
+  stats_.mode_update_seconds = 0.0;
+  const int r = settings_.kept_modes;
+  s_.y = Eigen::VectorXd::Zero(r + 3);
+  s_.yd = project(full.v);
+  s_.z = full.z.size() == support_.size() ? full.z : Eigen::VectorXd::Zero(support_.size());
+  s_.zd = full.zd.size() == support_.size() ? full.zd : Eigen::VectorXd::Zero(support_.size());
+  const Eigen::VectorXd vr = expand(s_.yd);
+  stats_.projection_energy_loss +=
+      0.5 * (full.v.dot(rope_.massMatrix() * full.v) - vr.dot(rope_.massMatrix() * vr));
+  initializeAccelerations();
+}
+
+double ReducedOrderSolver::maxNodeIncrement() const {
+  const int r = static_cast<int>(phi_.cols());
+  const Eigen::VectorXd inc = node_rows_ * s_.y.head(r);
+  const Eigen::Vector3d ub = s_.y.tail<3>();
+  double worst = 0.0;
+  for (int j = 0; j < rope_.nodes(); ++j) {
+    worst = std::max(worst, (inc.segment<3>(3 * j) + ub).squaredNorm());
+  }
+  return std::sqrt(worst);
+}
+
+void ReducedOrderSolver::step() {
+  const int r = static_cast<int>(phi_.cols()), m = support_.size();
+  const double h = h_, am = ga_.alpha_m, af = ga_.alpha_f, be = ga_.beta, ga = ga_.gamma;
+  const double betaP = (1.0 - am) / (h * h * be * (1.0 - af));
+  const double gammaP = ga / (h * be);
+  const double bh2 = be * h * h, massWeight = (1.0 - am) / (1.0 - af);
+  const Eigen::VectorXd ydd0 = s_.ydd, ya0 = s_.ya, zdd0 = s_.zdd, za0 = s_.za;
+  {
+    const Eigen::VectorXd aNew = (ydd0 - am * ya0) / (1.0 - am);
+    s_.y += h * s_.yd + h * h * ((0.5 - be) * ya0 + be * aNew);
+    s_.yd += h * ((1.0 - ga) * ya0 + ga * aNew);
+  }
+  if (m > 0) {
+    const Eigen::VectorXd aNew = (zdd0 - am * za0) / (1.0 - am);
+    s_.z += h * s_.zd + h * h * ((0.5 - be) * za0 + be * aNew);
+    s_.zd += h * ((1.0 - ga) * za0 + ga * aNew);
+  }
+  // The step's 6 x 6 system: refactorised when the subdomain or the support's G changes.
+  const Eigen::Matrix3d G = support_.setIterationWeights(massWeight, ga * h, bh2);
+  if (!(G == G_step_)) {
+    const Eigen::VectorXd d = Eigen::VectorXd::Constant(r, massWeight) + bh2 * omega2_;
+    kkt_.topLeftCorner<3, 3>() = massWeight * Mbb_ - massWeight * massWeight * Mcb_.transpose() *
+                                                         d.cwiseInverse().asDiagonal() * Mcb_;
+    kkt_.topRightCorner<3, 3>().setIdentity();
+    kkt_.bottomLeftCorner<3, 3>().setIdentity();
+    kkt_.bottomRightCorner<3, 3>() = -G;
+    kkt_lu_.compute(kkt_);
+    G_step_ = G;
+  }
+  // Residuals scaled by beta h^2 (as the full-order solver's); the system is linear: one solve.
+  Eigen::VectorXd ry(r + 3);
+  ry.head(r) = s_.ydd.head(r) + Mcb_ * s_.ydd.tail<3>() + omega2_.cwiseProduct(s_.y.head(r)) -
+               f_.head(r);
+  ry.tail<3>() = Mcb_.transpose() * s_.ydd.head(r) + Mbb_ * s_.ydd.tail<3>() - f_.tail<3>() +
+                 s_.lambda;
+  ry *= -bh2;
+  Eigen::VectorXd rz, dz;
+  if (m > 0) rz = -bh2 * (support_.internalForce(s_.z, s_.zd, s_.zdd) - support_.pointForceToCoordinates(s_.lambda));
+  const Eigen::Vector3d rc = -(e_m_.head<3>() + s_.y.tail<3>() - support_.point(s_.z));
+  Eigen::Vector3d dmu;
+  const Eigen::VectorXd dy = solveWeighted(massWeight, ga * h, bh2, ry, rz, rc, dz, dmu, true);
+  s_.y += dy;
+  s_.yd += gammaP * dy;
+  s_.ydd += betaP * dy;
+  s_.lambda += dmu / bh2;
+  if (m > 0) {
+    s_.z += dz;
+    s_.zd += gammaP * dz;
+    s_.zdd += betaP * dz;
+    s_.za = (af * zdd0 - am * za0 + (1.0 - af) * s_.zdd) / (1.0 - am);
+  }
+  s_.ya = (af * ydd0 - am * ya0 + (1.0 - af) * s_.ydd) / (1.0 - am);
+  s_.t += h;
+  if (!s_.y.allFinite() || !s_.yd.allFinite() || !s_.z.allFinite() || !s_.lambda.allFinite()) {
+    throw NumericalFailure(at(s_.t) + ": non-finite reduced state");
+  }
+  if (maxNodeIncrement() > settings_.delta) {
+    // Switch: rebuild the linearisation at the current state and carry the state over.
+    const Eigen::VectorXd e = e_m_ + expand(s_.y), v = expand(s_.yd), acc = expand(s_.ydd),
+                          aa = expand(s_.ya);
+    try {
+      startSubdomain(e);
+    } catch (const std::runtime_error& ex) {
+      throw NumericalFailure(at(s_.t) + ": rope mode update failed: " + ex.what());
+    }
+    s_.y.setZero(r + 3);
+    s_.yd = project(v);
+    s_.ydd = project(acc);
+    s_.ya = project(aa);
+    const Eigen::VectorXd vr = expand(s_.yd);
+    const SparseMatrix& M = rope_.massMatrix();
+    stats_.projection_energy_loss += 0.5 * (v.dot(M * v) - vr.dot(M * vr));
+  }
+}
+
+CoupledState ReducedOrderSolver::fullState() const {
+  CoupledState f;
+  f.t = s_.t;
+  f.q = e_m_ + expand(s_.y);
+  f.v = expand(s_.yd);
+  f.qdd = expand(s_.ydd);
+  f.a = expand(s_.ya);
+  f.z = s_.z;
+  f.zd = s_.zd;
+  f.zdd = s_.zdd;
+  f.za = s_.za;
+  f.lambda = s_.lambda;
+  return f;
+}
+
+Eigen::Vector3d ReducedOrderSolver::nodePosition(int j) const {
+  const int r = static_cast<int>(phi_.cols());
+  return e_m_.segment<3>(6 * j) + node_rows_.middleRows<3>(3 * j) * s_.y.head(r) + s_.y.tail<3>();
+}
+
+Eigen::Vector3d ReducedOrderSolver::nodeVelocity(int j) const {
+  const int r = static_cast<int>(phi_.cols());
+  return node_rows_.middleRows<3>(3 * j) * s_.yd.head(r) + s_.yd.tail<3>();
+}
+
+double ReducedOrderSolver::constraintError() const {
+  return (e_m_.head<3>() + s_.y.tail<3>() - support_.point(s_.z)).norm();
+}
+
+double ReducedOrderSolver::topTension() const {
+  return (s_.lambda + rope_.topMass() * (s_.ydd.tail<3>() - rope_.gravity())).norm();
+}
+
+}  // namespace crane_twin

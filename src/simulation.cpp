@@ -1,0 +1,45 @@
+#include "crane_twin/simulation.hpp"
+
+#include <iomanip>
+
+#include "crane_twin/config_reader.hpp"
+#include "crane_twin/crane_simulation.hpp"
+#include "crane_twin/reduced_crane_simulation.hpp"
+
+namespace crane_twin {
+
+const char* const kSeriesHeader =
+    "t,payload_x,payload_y,payload_z,payload_vx,payload_vy,payload_vz,cab_dx,cab_dy,cab_dz,"
+    "jib_tip_dx,jib_tip_dy,jib_tip_dz,trolley_x,trolley_y,trolley_z,rope_top_tension,"
+    "rope_length,slew_angle,trolley_radius,energy,constraint_error,subdomains";
+
+void writeSeriesRow(std::ostream& out, const SeriesValues& v) {
+  auto put = [&out](const Eigen::Vector3d& x) { out << ',' << x.x() << ',' << x.y() << ',' << x.z(); };
+  out << std::setprecision(10) << v.t;
+  put(v.payload);
+  put(v.payload_velocity);
+  put(v.cab);
+  put(v.jib_tip);
+  put(v.trolley);
+  out << ',' << v.rope_top_tension << ',' << v.rope_length << ',' << v.slew_angle << ','
+      << v.trolley_radius << ',' << v.energy << ',' << v.constraint_error << ',' << v.subdomains
+      << '\n';
+}
+
+void Simulation::writeNodeRows(std::ostream& out) const {
+  const double t = time();
+  for (int j = 0; j < ropeNodes(); ++j) {
+    const Eigen::Vector3d r = ropeNode(j);
+    out << std::setprecision(10) << t << ',' << j << ',' << r.x() << ',' << r.y() << ',' << r.z()
+        << '\n';
+  }
+}
+
+std::unique_ptr<Simulation> makeSimulation(const CraneModel& model) {
+  const Scene& sc = model.scene;
+  if (sc.rope.model == "full") return std::make_unique<CraneSimulation>(model);
+  if (sc.rope.model == "reduced") return std::make_unique<ReducedCraneSimulation>(model);
+  throw InputError(sc.file + ": key 'rope.model': '" + sc.rope.model + "' is not built yet");
+}
+
+}  // namespace crane_twin
