@@ -22,11 +22,12 @@ int keptRopeModes(const CraneModel& model) {
 }
 
 namespace {
-ReducedSettings settingsFor(const CraneModel& model, bool warm) {
+ReducedSettings settingsFor(const CraneModel& model) {
+  const RopeSettings& r = model.scene.rope;
   ReducedSettings s;
   s.kept_modes = keptRopeModes(model);
-  s.delta = model.scene.rope.subdomain_delta;
-  s.warm_updates = warm;
+  s.delta = r.subdomain_delta;
+  s.update = r.mode_update == "cold" ? ModeUpdate::cold : ModeUpdate::warm;
   return s;
 }
 const GeneralizedAlpha schemeFor(const Scene& sc) {
@@ -35,11 +36,10 @@ const GeneralizedAlpha schemeFor(const Scene& sc) {
 }
 }  // namespace
 
-ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model, bool warm_updates)
-    : full_(model) {
+ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model) : full_(model) {
   solver_ = std::make_unique<ReducedOrderSolver>(full_.rope(), full_.support(),
                                                  schemeFor(model.scene), model.scene.time_step,
-                                                 settingsFor(model, warm_updates));
+                                                 settingsFor(model));
 }
 
 void ReducedCraneSimulation::initialize() { solver_->initialize(full_.initialState()); }

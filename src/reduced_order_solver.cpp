@@ -63,10 +63,11 @@ void ReducedOrderSolver::startSubdomain(const Eigen::VectorXd& e) {
   SparseMatrix K(n, n);
   K.setFromTriplets(trip.begin(), trip.end());
   const SparseMatrix& M = rope_.massMatrix();
-  const bool first = modes_.phi.size() == 0;
-  if (first || !settings_.warm_updates) {
+  if (modes_.phi.size() == 0 || settings_.update == ModeUpdate::cold) {
+    if (modes_.phi.size() != 0) ++stats_.eigen_solves;
     modes_ = coldRopeModes(K, M, settings_.modes);
   } else {
+    ++stats_.eigen_solves;
     try {
       modes_ = warmRopeModes(K, M, modes_, settings_.modes);
     } catch (const std::runtime_error&) {

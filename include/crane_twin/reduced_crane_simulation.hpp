@@ -14,8 +14,7 @@ int keptRopeModes(const CraneModel& model);
 
 class ReducedCraneSimulation final : public Simulation {
  public:
-  /// `warm_updates` false recomputes the modes from scratch at every switch.
-  explicit ReducedCraneSimulation(const CraneModel& model, bool warm_updates = true);
+  explicit ReducedCraneSimulation(const CraneModel& model);
   void initialize() override;
   void step() override { solver_->step(); }
   double time() const override { return solver_->state().t; }

@@ -32,10 +32,15 @@
 
 namespace crane_twin {
 
+/// How the rope basis is renewed at a subdomain switch: cold (modes of the new tangent from
+/// scratch, the paper's method as printed) or warm (subspace iteration from the previous block
+/// plus Rayleigh-Ritz, RopeModes).
+enum class ModeUpdate { cold, warm };
+
 struct ReducedSettings {
   int kept_modes = 10;         ///< fixed-top rope modes kept (plus the 3 translations)
   double delta = 0.05;         ///< subdomain criterion [m]
-  bool warm_updates = true;    ///< warm (subspace iteration) or cold mode updates
+  ModeUpdate update = ModeUpdate::warm;
   RopeModeSettings modes;      ///< shift, guard, sweeps (kept is set from kept_modes)
 };
 
@@ -53,6 +58,7 @@ struct ReducedStatistics {
   double projection_energy_loss = 0.0;  ///< kinetic energy lost by the switch projections [J]
   double max_mode_residual = 0.0;  ///< worst relative residual of a kept mode after an update
   int cold_fallbacks = 0;          ///< warm updates that had to fall back to a cold solve
+  int eigen_solves = 0;            ///< mode computations after the first (warm or cold)
 };
 
 class ReducedOrderSolver {

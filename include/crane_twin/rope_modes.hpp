@@ -27,7 +27,7 @@ struct RopeModeSettings {
   int kept = 10;          ///< modes kept, 1 .. n - 3
   int guard = 0;          ///< extra block vectors for warm updates (0: max(4, kept / 4))
   double shift = -1.0;    ///< sigma [rad^2/s^2]
-  int sweeps = 1;         ///< subspace iterations per warm update
+  int sweeps = 2;         ///< subspace iterations per warm update
 };
 
 /// Interior (top position removed) K and M of the rope: rows/cols 3.. of the full matrices.
