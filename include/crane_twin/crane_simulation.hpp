@@ -29,13 +29,18 @@ class CraneSimulation final : public Simulation {
   void step() override;
   double time() const override { return state_.t; }
   SeriesValues series() const override;
+  void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab, Eigen::Vector3d& jib_tip) const override {
+    payload = AncfRope::nodePosition(state_.q, rope_->nodes() - 1);
+    cab = support_->cabDisplacement(state_.z);
+    jib_tip = support_->jibTipDisplacement(state_.z);
+  }
   int ropeNodes() const override { return rope_->nodes(); }
   Eigen::Vector3d ropeNode(int j) const override { return AncfRope::nodePosition(state_.q, j); }
   const CraneModel& model() const { return model_; }
   const CoupledState& state() const { return state_; }
   RopeSupport& support() { return *support_; }
-  const AncfRope& rope() const { return *rope_; }
   const RopeSupport& support() const { return *support_; }
+  const AncfRope& rope() const { return *rope_; }
   const FullOrderSolver& solver() const { return *solver_; }
 
   /// Output quantities of a full-coordinate state (also used by the reduced model).

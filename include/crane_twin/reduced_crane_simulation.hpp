@@ -19,6 +19,11 @@ class ReducedCraneSimulation final : public Simulation {
   void step() override { solver_->step(); }
   double time() const override { return solver_->state().t; }
   SeriesValues series() const override;
+  void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab, Eigen::Vector3d& jib_tip) const override {
+    payload = solver_->nodePosition(full_.ropeNodes() - 1);
+    cab = full_.support().cabDisplacement(solver_->state().z);
+    jib_tip = full_.support().jibTipDisplacement(solver_->state().z);
+  }
   int ropeNodes() const override { return full_.ropeNodes(); }
   Eigen::Vector3d ropeNode(int j) const override { return solver_->nodePosition(j); }
   int subdomains() const override { return solver_->statistics().subdomains; }

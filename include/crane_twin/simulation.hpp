@@ -34,6 +34,9 @@ class Simulation {
   virtual void step() = 0;
   virtual double time() const = 0;
   virtual SeriesValues series() const = 0;
+  /// Payload position and the cab / jib-tip displacements, without the energy and tension
+  /// series() computes (cheap enough to sample every few steps).
+  virtual void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab, Eigen::Vector3d& jib_tip) const = 0;
   virtual int ropeNodes() const = 0;
   virtual Eigen::Vector3d ropeNode(int j) const = 0;
   /// Subdomains started and wall time in rope mode updates (0 for a full-order run).

@@ -17,6 +17,8 @@
 #include "crane_twin/modal_analysis.hpp"
 #include "crane_twin/crane_simulation.hpp"
 #include "crane_twin/simulation.hpp"
+#include "crane_twin/accuracy_sweep.hpp"
+#include "crane_twin/trajectory_compare.hpp"
 
 namespace ct = crane_twin;
 
@@ -117,13 +119,14 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
     if (series) ct::writeSeriesRow(series, sim->series());
     if (nodes) sim->writeNodeRows(nodes);
   };
-  std::chrono::steady_clock::time_point t0;
+  double wall = 0.0;  // the steps alone: no setup, no output
   try {
     sim->initialize();
     emit();
-    t0 = std::chrono::steady_clock::now();
     for (long k = 1; k <= steps; ++k) {
+      const auto t0 = std::chrono::steady_clock::now();
       sim->step();
+      wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (k % every == 0) emit();
       if (bar && (k % std::max(1L, steps / 100) == 0 || k == steps)) {
         std::fprintf(stderr, "\r[%-50s] %5.1f%%  t = %.2f s", std::string(50 * k / steps, '#').c_str(),
@@ -135,8 +138,6 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
     std::cerr << "numerical failure: " << e.what() << "\n";
     return 1;
   }
-  const double wall =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (bar) std::fprintf(stderr, "\n");
   const double simS = steps * sc.time_step;
   std::printf("summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=%d mode_updates_s=%.3g\n",
@@ -155,6 +156,56 @@ int runStatic(const SceneArgs& a) {
   std::printf("jib_tip_dz,%.9f\n", sim.support().jibTipDisplacement(s.z).z());
   std::printf("cab_dx,%.9f\n", sim.support().cabDisplacement(s.z).x());
   std::printf("holding_force_x,%.6f\nholding_force_y,%.6f\n", H.x(), H.y());
+  return 0;
+}
+
+int runCompare(const std::string& a, const std::string& b, const std::string& na,
+               const std::string& nb) {
+  if (na.empty() != nb.empty()) {
+    throw ct::InputError("--nodes-a and --nodes-b go together (the rope RMS error needs both)");
+  }
+  const ct::ErrorMetrics m =
+      ct::compareTrajectories(ct::readTrajectory(a, na), ct::readTrajectory(b, nb));
+  std::printf("common_times,%d\n", m.common_times);
+  std::printf("payload_error_max,%.9g\n", m.payload_max);
+  std::printf("payload_error_relative,%.9g\n", m.payload_relative);
+  if (m.rope_rms_max >= 0.0) {
+    std::printf("rope_rms_max,%.9g\n", m.rope_rms_max);
+    std::printf("rope_rms_relative,%.9g\n", m.rope_length > 0 ? m.rope_rms_max / m.rope_length : 0.0);
+  }
+  std::printf("cab_error_max,%.9g\n", m.cab_max);
+  std::printf("jib_tip_error_max,%.9g\n", m.jib_tip_max);
+  return 0;
+}
+
+struct SweepArgs {
+  std::string out;
+  bool quick = false;
+  double reference_dt = 0.0;
+  double interval = 0.02;
+};
+
+int runSweep(const SceneArgs& a, const SweepArgs& w) {
+  const ct::Scene scene = ct::loadScene(a.scene, a.sets);
+  const double refDt = w.reference_dt > 0.0 ? w.reference_dt : 0.5 * scene.time_step;
+  std::ofstream out;
+  if (!w.out.empty()) out = openOutput(w.out, "--out");
+  std::string name = a.scene.substr(a.scene.find_last_of('/') + 1);
+  name = name.substr(0, name.rfind(".yaml"));
+  if (out) out << ct::kSweepHeader << "\n";
+  std::printf("%s\n", ct::kSweepHeader);
+  const auto cases = ct::sweepGrid(scene, w.quick);
+  try {
+    ct::runSweep(a.scene, a.sets, cases, refDt, w.interval, [&](const ct::SweepResult& r) {
+      const std::string row = ct::sweepRow(name, r);
+      std::printf("%s\n", row.c_str());
+      std::fflush(stdout);
+      if (out) out << row << "\n" << std::flush;
+    });
+  } catch (const ct::NumericalFailure& e) {
+    std::cerr << "numerical failure: " << e.what() << "\n";
+    return 1;
+  }
   return 0;
 }
 
@@ -182,6 +233,23 @@ int main(int argc, char** argv) {
   run->add_flag("--quiet", runOpts.quiet, "no progress bar");
   CLI::App* stat = app.add_subcommand("static", "print the static equilibrium as key,value");
   addSceneArgs(stat, staticArgs);
+  std::string cmpA, cmpB, cmpNA, cmpNB;
+  CLI::App* cmp = app.add_subcommand("compare", "SPEC 4 error metrics of run A against run B");
+  cmp->add_option("a", cmpA, "time-series CSV of run A")->required();
+  cmp->add_option("b", cmpB, "time-series CSV of run B (the reference)")->required();
+  cmp->add_option("--nodes-a", cmpNA, "nodes CSV of run A");
+  cmp->add_option("--nodes-b", cmpNB, "nodes CSV of run B");
+  SceneArgs sweepArgs;
+  SweepArgs sweepOpts;
+  CLI::App* sweep = app.add_subcommand("sweep", "accuracy against wall time, full and reduced (SPEC 5)");
+  addSceneArgs(sweep, sweepArgs);
+  sweep->add_option("--out", sweepOpts.out, "CSV of the results");
+  sweep->add_flag("--quick", sweepOpts.quick, "a few settings only");
+  sweep->add_option("--reference-dt", sweepOpts.reference_dt,
+                    "time step of the full-order reference (default: half the scene's)")
+      ->check(CLI::PositiveNumber);
+  sweep->add_option("--interval", sweepOpts.interval, "sampling interval of the comparison [s]")
+      ->check(CLI::PositiveNumber);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -195,6 +263,8 @@ int main(int argc, char** argv) {
     if (*modes) return runModes(modesArgs, count, part);
     if (*run) return runRun(runArgs, runOpts);
     if (*stat) return runStatic(staticArgs);
+    if (*cmp) return runCompare(cmpA, cmpB, cmpNA, cmpNB);
+    if (*sweep) return runSweep(sweepArgs, sweepOpts);
   } catch (const ct::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;

@@ -1,0 +1,37 @@
+// Error metrics of SPEC 4 between two runs of the same scene (reduced against full, or any
+// setting against a reference): payload error, rope RMS error over all nodes (paper eq. 18 with
+// its square restored), cab and jib-tip errors, each the max over the common output times.
+#pragma once
+
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+namespace crane_twin {
+
+/// What a run leaves behind at its output times (nodes may be empty).
+struct Trajectory {
+  std::vector<double> t;
+  std::vector<Eigen::Vector3d> payload, cab, jib_tip;
+  std::vector<std::vector<Eigen::Vector3d>> nodes;  ///< per output time, every rope node
+  double rope_length = 0.0;                          ///< hanging length at t = 0 [m]
+};
+
+struct ErrorMetrics {
+  int common_times = 0;
+  double payload_max = 0.0;       ///< max_t |r_p^A - r_p^B| [m]
+  double payload_relative = 0.0;  ///< payload_max / rope length
+  double rope_rms_max = -1.0;     ///< max_t sqrt(1/n sum_j |r_j^A - r_j^B|^2) [m]; -1 without nodes
+  double cab_max = 0.0, jib_tip_max = 0.0;  ///< [m]
+  double rope_length = 0.0;  ///< the length the relative errors divide by [m]
+};
+
+/// Metrics at the times both trajectories share (matched to 1e-9 s). Throws InputError when
+/// they share none or their node counts differ.
+ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b);
+
+/// Read a SPEC 3.1 time-series CSV (and optionally its nodes CSV). Throws InputError naming the
+/// file, line and column for a missing column, a malformed number or a ragged row.
+Trajectory readTrajectory(const std::string& series_csv, const std::string& nodes_csv = "");
+
+}  // namespace crane_twin

@@ -1,0 +1,141 @@
+#include "crane_twin/accuracy_sweep.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "crane_twin/reduced_crane_simulation.hpp"
+#include "crane_twin/simulation.hpp"
+#include "crane_twin/config_reader.hpp"
+
+namespace crane_twin {
+
+Trajectory recordRun(const CraneModel& model, double interval, double* wall_s, int* subdomains,
+                     double* mode_updates_s) {
+  const Scene& sc = model.scene;
+  const long every = std::lround(interval / sc.time_step);
+  if (every < 1 || std::abs(every * sc.time_step - interval) > 1e-9) {
+    throw InputError(sc.file + ": key 'time_step': " + std::to_string(sc.time_step) +
+                     " s does not divide the sampling interval " + std::to_string(interval) + " s");
+  }
+  const std::unique_ptr<Simulation> sim = makeSimulation(model);
+  sim->initialize();
+  Trajectory tr;
+  tr.rope_length = sc.rope.length;
+  auto record = [&]() {
+    Eigen::Vector3d p, c, j;
+    sim->sample(p, c, j);
+    tr.t.push_back(sim->time());
+    tr.payload.push_back(p);
+    tr.cab.push_back(c);
+    tr.jib_tip.push_back(j);
+    std::vector<Eigen::Vector3d> nodes(sim->ropeNodes());
+    for (int k = 0; k < sim->ropeNodes(); ++k) nodes[k] = sim->ropeNode(k);
+    tr.nodes.push_back(std::move(nodes));
+  };
+  record();
+  const long steps = std::lround(sc.duration / sc.time_step);
+  double wall = 0.0;
+  for (long k = 1; k <= steps; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    sim->step();
+    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (k % every == 0) record();
+  }
+  if (wall_s) *wall_s = wall;
+  if (subdomains) *subdomains = sim->subdomains();
+  if (mode_updates_s) *mode_updates_s = sim->modeUpdateSeconds();
+  return tr;
+}
+
+namespace {
+std::string num(double x) {
+  std::ostringstream s;
+  s << x;
+  return s.str();
+}
+}  // namespace
+
+std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
+  std::vector<SweepCase> g;
+  const std::vector<double> fullSteps =
+      quick ? std::vector<double>{0.001, 0.01} : std::vector<double>{0.001, 0.002, 0.005, 0.01, 0.02};
+  for (double dt : fullSteps) {
+    g.push_back({"full", {"rope.model=full", "time_step=" + num(dt)}, dt, 0, 0.0, scene.structure_modes});
+  }
+  const std::vector<int> modes = quick ? std::vector<int>{10} : std::vector<int>{6, 10, 20};
+  const std::vector<double> deltas = quick ? std::vector<double>{0.05, 0.5} : std::vector<double>{0.05, 0.2, 0.5};
+  const std::vector<double> steps = quick ? std::vector<double>{0.001, 0.01} : std::vector<double>{0.001, 0.005, 0.01};
+  for (int m : modes)
+    for (double d : deltas)
+      for (double dt : steps) {
+        g.push_back({"reduced",
+                     {"rope.model=reduced", "rope.mode_count=" + std::to_string(m),
+                      "rope.subdomain_delta=" + num(d), "time_step=" + num(dt)},
+                     dt, m, d, scene.structure_modes});
+      }
+  if (!quick) {
+    // The paper's setting: half of the rope DOF, the scene's delta and step.
+    const int n = 6 * (scene.rope.elements + 1);
+    g.push_back({"reduced",
+                 {"rope.model=reduced", "rope.mode_count=0", "rope.mode_fraction=0.5",
+                  "time_step=" + num(scene.time_step)},
+                 scene.time_step, static_cast<int>(std::lround(0.5 * n)) - 3,
+                 scene.rope.subdomain_delta, scene.structure_modes});
+    if (scene.crane && scene.structure_model == "modal") {
+      g.push_back({"reduced",
+                   {"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_delta=0.2",
+                    "time_step=0.005", "structure.modes=20"},
+                   0.005, 10, 0.2, 20});
+    }
+  }
+  return g;
+}
+
+std::vector<SweepResult> runSweep(const std::string& scene_file,
+                                  const std::vector<std::string>& overrides,
+                                  const std::vector<SweepCase>& cases, double reference_dt,
+                                  double interval,
+                                  const std::function<void(const SweepResult&)>& progress) {
+  auto modelWith = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> sets = overrides;
+    sets.insert(sets.end(), extra.begin(), extra.end());
+    return buildCraneModel(loadScene(scene_file, sets));
+  };
+  const CraneModel refModel = modelWith({"rope.model=full", "time_step=" + num(reference_dt)});
+  SweepResult ref;
+  ref.setting = {"reference", {}, reference_dt, 0, 0.0, refModel.scene.structure_modes};
+  const Trajectory reference = recordRun(refModel, interval, &ref.wall_s);
+  ref.rtf = refModel.scene.duration / ref.wall_s;
+  std::vector<SweepResult> out{ref};
+  if (progress) progress(ref);
+  for (const SweepCase& c : cases) {
+    SweepResult r;
+    r.setting = c;
+    const CraneModel m = modelWith(c.overrides);
+    const Trajectory t = recordRun(m, interval, &r.wall_s, &r.subdomains, &r.mode_updates_s);
+    r.rtf = m.scene.duration / r.wall_s;
+    r.error = compareTrajectories(t, reference);
+    out.push_back(r);
+    if (progress) progress(r);
+  }
+  return out;
+}
+
+const char* const kSweepHeader =
+    "scene,model,time_step,rope_modes,delta,structure_modes,wall_s,rtf,subdomains,"
+    "mode_updates_s,payload_error_max,rope_rms_max,cab_error_max,jib_tip_error_max";
+
+std::string sweepRow(const std::string& scene, const SweepResult& r) {
+  std::ostringstream s;
+  s.precision(6);
+  const SweepCase& c = r.setting;
+  s << scene << ',' << c.model << ',' << c.time_step << ',' << c.rope_modes << ',' << c.delta << ','
+    << c.structure_modes << ',' << r.wall_s << ',' << r.rtf << ',' << r.subdomains << ','
+    << r.mode_updates_s << ',' << r.error.payload_max << ',' << r.error.rope_rms_max << ','
+    << r.error.cab_max << ',' << r.error.jib_tip_max;
+  return s.str();
+}
+
+}  // namespace crane_twin
