@@ -4,6 +4,8 @@
 #include <benchmark/benchmark.h>
 
 #include "crane_twin/crane_simulation.hpp"
+#include "crane_twin/reduced_crane_simulation.hpp"
+#include "crane_twin/rope_modes.hpp"
 
 using namespace crane_twin;
 
@@ -36,3 +38,59 @@ static void BM_FullOrderStepT8036Modal(benchmark::State& state) {
 }
 BENCHMARK(BM_FullOrderStepT8036Modal)->Arg(60)->Arg(120)->Arg(240)->Arg(480)->ArgName("elements")
     ->Unit(benchmark::kMicrosecond);
+
+// ---- Reduced order (issue 4) ----------------------------------------------------------------
+
+namespace {
+struct RopeTangents {
+  SparseMatrix K0, K1, M;
+};
+
+// Tangents of the 120-element T8036 rope at its 2.3 deg equilibrium and 0.1 s into the swing.
+RopeTangents ropeTangents() {
+  const CraneModel m = buildCraneModel(loadScene(kScenes + "t8036_combination1.yaml",
+                                                 {"rope.model=full", "structure.modes=20"}));
+  CraneSimulation sim(m);
+  sim.initialize();
+  auto tangent = [&](const Eigen::VectorXd& q) {
+    Eigen::VectorXd Q;
+    std::vector<Eigen::Triplet<double>> t;
+    sim.rope().elasticForce(q, Q, &t);
+    SparseMatrix K(q.size(), q.size());
+    K.setFromTriplets(t.begin(), t.end());
+    return K;
+  };
+  RopeTangents r;
+  r.K0 = tangent(sim.state().q);
+  for (int k = 0; k < 100; ++k) sim.step();
+  r.K1 = tangent(sim.state().q);
+  r.M = sim.rope().massMatrix();
+  return r;
+}
+}  // namespace
+
+static void BM_RopeModeUpdate(benchmark::State& state) {
+  static const RopeTangents t = ropeTangents();
+  RopeModeSettings s;
+  s.kept = static_cast<int>(state.range(0));
+  const bool warm = state.range(1) != 0;
+  const RopeModes start = coldRopeModes(t.K0, t.M, s);
+  for (auto _ : state) {
+    RopeModes m = warm ? warmRopeModes(t.K1, t.M, start, s) : coldRopeModes(t.K1, t.M, s);
+    benchmark::DoNotOptimize(m.phi.data());
+  }
+}
+BENCHMARK(BM_RopeModeUpdate)->Args({10, 1})->Args({10, 0})->Args({20, 1})->Args({20, 0})
+    ->Args({360, 1})->Args({360, 0})->ArgNames({"modes", "warm"})->Unit(benchmark::kMillisecond);
+
+static void BM_ReducedStepT8036(benchmark::State& state) {
+  // Steps only inside one subdomain (delta large), so the cost is the step's own.
+  const CraneModel m = buildCraneModel(loadScene(
+      kScenes + "t8036_combination1.yaml",
+      {"rope.model=reduced", "rope.mode_count=" + std::to_string(state.range(0)),
+       "rope.subdomain_delta=1000"}));
+  ReducedCraneSimulation sim(m);
+  sim.initialize();
+  for (auto _ : state) sim.step();
+}
+BENCHMARK(BM_ReducedStepT8036)->Arg(10)->Arg(360)->ArgName("modes")->Unit(benchmark::kMicrosecond);

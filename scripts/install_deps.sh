@@ -8,6 +8,7 @@ PKGS=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev libboost-dev
   catkin ros-core-dev ros-message-generation ros-std-msgs ros-sensor-msgs
   ros-geometry-msgs ros-visualization-msgs libtf2-ros-dev librostest-dev python3-rostest
+  python3-matplotlib
 )
 missing=()
 for p in "${PKGS[@]}"; do

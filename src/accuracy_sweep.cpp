@@ -60,7 +60,8 @@ std::string num(double x) {
 std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
   std::vector<SweepCase> g;
   const std::vector<double> fullSteps =
-      quick ? std::vector<double>{0.001, 0.01} : std::vector<double>{0.001, 0.002, 0.005, 0.01, 0.02};
+      quick ? std::vector<double>{0.001, 0.01}
+            : std::vector<double>{0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1};
   for (double dt : fullSteps) {
     g.push_back({"full", {"rope.model=full", "time_step=" + num(dt)}, dt, 0, 0.0, scene.structure_modes});
   }
@@ -100,6 +101,9 @@ std::vector<SweepResult> runSweep(const std::string& scene_file,
                                   const std::function<void(const SweepResult&)>& progress) {
   auto modelWith = [&](const std::vector<std::string>& extra) {
     std::vector<std::string> sets = overrides;
+    // The scene's CSV output interval must not be below a step (recordRun samples on its own);
+    // a case may set its own (later overrides win).
+    sets.push_back("output_interval=" + num(interval));
     sets.insert(sets.end(), extra.begin(), extra.end());
     return buildCraneModel(loadScene(scene_file, sets));
   };
@@ -113,8 +117,13 @@ std::vector<SweepResult> runSweep(const std::string& scene_file,
   for (const SweepCase& c : cases) {
     SweepResult r;
     r.setting = c;
-    const CraneModel m = modelWith(c.overrides);
-    const Trajectory t = recordRun(m, interval, &r.wall_s, &r.subdomains, &r.mode_updates_s);
+    // Steps longer than the sampling interval sample at their own step; the comparison then
+    // uses the times both runs share.
+    const double every = std::max(interval, c.time_step);
+    std::vector<std::string> sets = c.overrides;
+    sets.push_back("output_interval=" + num(every));
+    const CraneModel m = modelWith(sets);
+    const Trajectory t = recordRun(m, every, &r.wall_s, &r.subdomains, &r.mode_updates_s);
     r.rtf = m.scene.duration / r.wall_s;
     r.error = compareTrajectories(t, reference);
     out.push_back(r);

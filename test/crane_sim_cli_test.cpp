@@ -194,3 +194,110 @@ TEST(CraneSimCli, T8036StaticReportsStructureDeflection) {
   ASSERT_NE(pos, std::string::npos) << r.out;
   EXPECT_LT(std::stod(r.out.substr(pos + 12)), -0.5) << r.out;
 }
+
+TEST(CraneSimCli, ReducedRunCountsSubdomains) {
+  const Result r = run("run " + kRope + " --set rope.model=reduced --set rope.mode_count=6"
+                       " --set rope.elements=10 --set duration=2 --set initial.mode=equilibrium"
+                       " --set rope.subdomain_delta=0.01 --quiet");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto l = lines(r.out);
+  const auto pos = l.back().find(" subdomains=");
+  ASSERT_NE(pos, std::string::npos) << l.back();
+  EXPECT_GT(std::stoi(l.back().substr(pos + 12)), 1) << l.back();
+}
+
+TEST(CraneSimCli, CompareComputesTheSpecMetrics) {
+  const std::string a = ::testing::TempDir() + "cmp_a.csv", b = ::testing::TempDir() + "cmp_b.csv";
+  ASSERT_EQ(run("run " + kRope + " --set duration=0.1 --set rope.elements=6 --out " + a + " --quiet").status, 0);
+  // B: A with the payload moved by (0.3, 0.4, 0) at the second row: error 0.5 m, 0.5/60 relative.
+  {
+    std::ifstream in(a);
+    std::ofstream out(b);
+    std::string line;
+    for (int i = 0; std::getline(in, line); ++i) {
+      if (i == 2) {
+        std::vector<std::string> f;
+        std::istringstream s(line);
+        for (std::string x; std::getline(s, x, ',');) f.push_back(x);
+        f[1] = std::to_string(std::stod(f[1]) + 0.3);
+        f[2] = std::to_string(std::stod(f[2]) + 0.4);
+        line.clear();
+        for (std::size_t k = 0; k < f.size(); ++k) line += (k ? "," : "") + f[k];
+      }
+      out << line << "\n";
+    }
+  }
+  const Result r = run("compare " + a + " " + b);
+  ASSERT_EQ(r.status, 0) << r.out;
+  const auto at = [&](const std::string& key) {
+    const auto p = r.out.find(key + ",");
+    return p == std::string::npos ? NAN : std::stod(r.out.substr(p + key.size() + 1));
+  };
+  EXPECT_EQ(at("common_times"), 3);
+  EXPECT_NEAR(at("payload_error_max"), 0.5, 1e-5);
+  EXPECT_NEAR(at("payload_error_relative"), 0.5 / 60.0, 1e-6);
+  EXPECT_EQ(at("cab_error_max"), 0.0);
+}
+
+TEST(CraneSimCli, CompareRefusesMalformedCsv) {
+  const std::string dir = ::testing::TempDir();
+  const std::string good = dir + "cmp_good.csv";
+  ASSERT_EQ(run("run " + kRope + " --set duration=0.1 --set rope.elements=6 --out " + good + " --quiet").status, 0);
+  struct Bad {
+    const char* name;
+    const char* text;
+    const char* expect;
+  };
+  const Bad cases[] = {
+      {"cmp_empty.csv", "", "empty file"},
+      {"cmp_nocol.csv", "t,payload_x\n0,1\n", "payload_y"},
+      {"cmp_text.csv", nullptr, "not a finite number"},
+      {"cmp_ragged.csv", nullptr, "fields"},
+  };
+  std::string header;
+  {
+    std::ifstream in(good);
+    std::getline(in, header);
+  }
+  for (const Bad& c : cases) {
+    const std::string path = dir + c.name;
+    {
+      std::ofstream out(path);
+      if (c.text) {
+        out << c.text;
+      } else if (std::string(c.name) == "cmp_text.csv") {
+        out << header << "\n0,abc";  // payload_x not a number, the row otherwise complete
+        for (int k = 0; k < 21; ++k) out << ",0";
+        out << "\n";
+      } else {
+        out << header << "\n0,1,2\n";
+      }
+    }
+    const Result r = run("compare " + path + " " + good);
+    EXPECT_EQ(r.status, 2) << c.name << "\n" << r.out;
+    EXPECT_NE(r.out.find(path), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find(c.expect), std::string::npos) << c.name << "\n" << r.out;
+  }
+  const Result r = run("compare /nonexistent/a.csv " + good);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.out.find("/nonexistent/a.csv"), std::string::npos) << r.out;
+}
+
+TEST(CraneSimCli, QuickSweepWritesOneRowPerSetting) {
+  const std::string out = ::testing::TempDir() + "sweep.csv";
+  const Result r = run("sweep " + kRope + " --set duration=0.4 --set rope.elements=8"
+                       " --set initial.mode=equilibrium --quick --out " + out);
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::ifstream in(out);
+  std::string header, row;
+  std::getline(in, header);
+  EXPECT_EQ(header.rfind("scene,model,time_step,rope_modes,delta", 0), 0u) << header;
+  int rows = 0, reference = 0;
+  while (std::getline(in, row)) {
+    ++rows;
+    if (row.find(",reference,") != std::string::npos) ++reference;
+    EXPECT_EQ(row.find("nan"), std::string::npos) << row;
+  }
+  EXPECT_EQ(reference, 1);
+  EXPECT_EQ(rows, 1 + 2 + 4);  // reference, full at 1 and 10 ms, reduced 10 modes x 2 deltas x 2 steps
+}

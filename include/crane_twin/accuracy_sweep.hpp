@@ -36,7 +36,7 @@ struct SweepResult {
 Trajectory recordRun(const CraneModel& model, double interval, double* wall_s = nullptr,
                      int* subdomains = nullptr, double* mode_updates_s = nullptr);
 
-/// The grid of SPEC 5 for a scene: full at 1, 2, 5, 10, 20 ms; reduced at 6, 10, 20 modes x
+/// The grid of SPEC 5 for a scene: full at 1, 2, 5, 10, 20, 50, 100 ms; reduced at 6, 10, 20 modes x
 /// delta 0.05, 0.2, 0.5 m x 1, 5, 10 ms, plus the paper's point (mode_fraction 0.5, the
 /// scene's delta and step) and 20 structure modes at one reduced setting. `quick` keeps a few.
 std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick);

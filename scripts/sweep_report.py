@@ -1,0 +1,74 @@
+#!/usr/bin/python3
+"""Markdown tables from crane_sim sweep CSVs (docs/accuracy-vs-time.md).
+
+Usage: scripts/sweep_report.py SWEEP.csv [SWEEP.csv ...]
+Per scene: every setting, then the headline ratios: the paper's point (half the rope DOF at the
+scene's step and delta) against full order at the same step; reduced against full at the same
+step (1 ms); and at equal accuracy, the fastest setting of each model whose max payload error is
+at most 1 mm, plus the fastest reduced setting within 0.02 m.
+"""
+import csv
+import sys
+
+
+def fastest(rows, limit):
+    ok = [r for r in rows if float(r["payload_error_max"]) <= limit]
+    return min(ok, key=lambda r: float(r["wall_s"])) if ok else None
+
+
+def describe(r):
+    if r["model"] == "full":
+        return f"full, {float(r['time_step']) * 1e3:g} ms"
+    return (f"reduced, {r['rope_modes']} modes, delta {float(r['delta']):g} m, "
+            f"{float(r['time_step']) * 1e3:g} ms, {r['structure_modes']} structure modes")
+
+
+def main():
+    if len(sys.argv) < 2:
+        sys.exit(__doc__)
+    for path in sys.argv[1:]:
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+        scene = rows[0]["scene"]
+        print(f"### {scene}\n")
+        print("| model | step [ms] | rope modes | delta [m] | structure modes | wall [s] | rtf | "
+              "subdomains | mode updates [s] | payload error [m] | rope RMS error [m] |")
+        print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+        for r in rows:
+            print(f"| {r['model']} | {float(r['time_step']) * 1e3:g} | {r['rope_modes']} | "
+                  f"{float(r['delta']):g} | {r['structure_modes']} | {float(r['wall_s']):.3g} | "
+                  f"{float(r['rtf']):.3g} | {r['subdomains']} | {float(r['mode_updates_s']):.3g} | "
+                  f"{float(r['payload_error_max']):.2e} | {float(r['rope_rms_max']):.2e} |")
+        full = [r for r in rows if r["model"] == "full"]
+        red = [r for r in rows if r["model"] == "reduced"]
+        step = min(float(r["time_step"]) for r in full)
+        full1 = [r for r in full if float(r["time_step"]) == step][0]
+        w1 = float(full1["wall_s"])
+        print()
+        paper = [r for r in red if int(r["rope_modes"]) > 100]
+        if paper:
+            p = paper[0]
+            print(f"- Paper's point ({describe(p)}): payload error {float(p['payload_error_max']):.2e} m, "
+                  f"rope RMS {float(p['rope_rms_max']):.2e} m; {float(p['wall_s']):.3g} s against "
+                  f"{w1:.3g} s at full order and the same step: {w1 / float(p['wall_s']):.2g}x.")
+        same = [r for r in red if float(r["time_step"]) == step and int(r["rope_modes"]) == 10
+                and abs(float(r["delta"]) - 0.05) < 1e-12]
+        if same:
+            s = same[0]
+            print(f"- Same step, 10 modes, delta 0.05 m: {float(s['wall_s']):.3g} s, payload error "
+                  f"{float(s['payload_error_max']):.2e} m: {w1 / float(s['wall_s']):.3g}x faster than full.")
+        ff, fr = fastest(full, 1e-3), fastest(red, 1e-3)
+        if ff and fr:
+            print(f"- Equal accuracy (payload error <= 1 mm): fastest full is {describe(ff)} "
+                  f"({float(ff['wall_s']):.3g} s, {float(ff['payload_error_max']):.1e} m); fastest reduced is "
+                  f"{describe(fr)} ({float(fr['wall_s']):.3g} s, {float(fr['payload_error_max']):.1e} m): "
+                  f"{float(ff['wall_s']) / float(fr['wall_s']):.3g}x.")
+        f2 = fastest(red, 0.02)
+        if f2:
+            print(f"- Fastest reduced within 0.02 m: {describe(f2)}, rtf {float(f2['rtf']):.3g} "
+                  f"(payload error {float(f2['payload_error_max']):.2e} m).")
+        print()
+
+
+if __name__ == "__main__":
+    main()
