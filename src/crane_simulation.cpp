@@ -14,9 +14,7 @@ std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
   const TowerCraneStructure& st = *model.structure;
   const double theta = sc.slew_angle;
   if (sc.structure_model == "rigid") {
-    Eigen::Vector3d X = Eigen::Vector3d::Zero();
-    for (const auto& w : st.trolleyWeights(sc.trolley_radius)) X += w.weight * st.nodes[w.node];
-    return std::make_unique<FixedAnchor>(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()) * X);
+    return std::make_unique<RigidTrolleySupport>(st, sc.trolley_radius, theta);
   }
   if (sc.structure_modes >= st.free_dofs) {
     throw InputError(sc.file + ": key 'structure.modes': must be below the structure's " +

@@ -26,26 +26,52 @@ Eigen::Matrix3d slewRotation(double theta) {
 
 }  // namespace
 
+// Trolley point X_p(s) and its rows: the rail interpolation weights at radius s.
+static Eigen::Vector3d trolleyPoint(const TowerCraneStructure& s, double radius) {
+  Eigen::Vector3d X = Eigen::Vector3d::Zero();
+  for (const auto& w : s.trolleyWeights(radius)) X += w.weight * s.nodes[w.node];
+  return X;
+}
+
 StructureSupportBase::StructureSupportBase(const TowerCraneStructure& s, double trolley_radius,
-                                           double slew_angle, const Eigen::MatrixXd* modes) {
-  const std::vector<NodeLoad> trolley = s.trolleyWeights(trolley_radius);
+                                           double slew_angle, const Eigen::MatrixXd* modes)
+    : structure_(s) {
+  if (modes) modes_ = *modes;
   std::vector<NodeLoad> tip;
   for (int n : s.jib_tip_nodes) tip.push_back({n, 1.0 / s.jib_tip_nodes.size()});
-  const auto Pt = pointRows(s, trolley), Pc = pointRows(s, {{s.cab_node, 1.0}}),
-             Pj = pointRows(s, tip);
-  Eigen::Vector3d X = Eigen::Vector3d::Zero();
-  for (const auto& w : trolley) X += w.weight * s.nodes[w.node];
-  const Eigen::Matrix3d R = slewRotation(slew_angle);
-  r0_ = R * X;
-  if (modes) {
-    D_ = R * (Pt * *modes);
-    cab_ = Pc * *modes;
-    tip_ = Pj * *modes;
+  const auto Pc = pointRows(s, {{s.cab_node, 1.0}}), Pj = pointRows(s, tip);
+  cab_ = modes ? Eigen::Matrix<double, 3, Eigen::Dynamic>(Pc * *modes) : Pc;
+  tip_ = modes ? Eigen::Matrix<double, 3, Eigen::Dynamic>(Pj * *modes) : Pj;
+  setPose(slew_angle, trolley_radius);
+}
+
+// r_p = R(theta) (X_p(s) + B(s) T z): D = R B T.
+void StructureSupportBase::setPose(double theta, double radius) {
+  const std::vector<NodeLoad> w = structure_.trolleyWeights(radius);
+  const Eigen::Matrix3d R = slewRotation(theta);
+  r0_ = R * trolleyPoint(structure_, radius);
+  if (modes_.size() > 0) {
+    Eigen::Matrix<double, 3, Eigen::Dynamic> BT = Eigen::MatrixXd::Zero(3, modes_.cols());
+    for (const auto& x : w)
+      for (int d = 0; d < 3; ++d) {
+        const int e = structure_.dof_equation[6 * x.node + d];
+        if (e >= 0) BT.row(d) += x.weight * modes_.row(e);
+      }
+    D_ = R * BT;
   } else {
-    D_ = R * Pt;
-    cab_ = Pc;
-    tip_ = Pj;
+    D_ = R * pointRows(structure_, w);
   }
+  ++pose_version_;
+}
+
+RigidTrolleySupport::RigidTrolleySupport(const TowerCraneStructure& s, double trolley_radius,
+                                         double slew_angle)
+    : FixedAnchor(Eigen::Vector3d::Zero()), structure_(s) {
+  setPose(slew_angle, trolley_radius);
+}
+
+void RigidTrolleySupport::setPose(double theta, double radius) {
+  p_ = slewRotation(theta) * trolleyPoint(structure_, radius);
 }
 
 ModalStructureSupport::ModalStructureSupport(const TowerCraneStructure& s, const ModalBasis& b,
@@ -97,16 +123,20 @@ Eigen::VectorXd FullStructureSupport::internalForce(const Eigen::VectorXd& z,
 Eigen::Matrix3d FullStructureSupport::setIterationWeights(double a, double c, double k) {
   // A_z = a M + c (alpha M + beta K) + k K.
   const double wm = a + c * alpha_, wk = k + c * beta_;
-  if (wm == weight_m_ && wk == weight_k_) return G_;
-  A_ = wm * M_ + wk * K_;
-  llt_.factorize(A_);
-  if (llt_.info() != Eigen::Success) {
-    throw std::runtime_error("structure iteration matrix factorisation failed");
+  const bool weightsChanged = !(wm == weight_m_ && wk == weight_k_);
+  if (!weightsChanged && G_pose_version_ == pose_version_) return G_;
+  if (weightsChanged) {
+    A_ = wm * M_ + wk * K_;
+    llt_.factorize(A_);
+    if (llt_.info() != Eigen::Success) {
+      throw std::runtime_error("structure iteration matrix factorisation failed");
+    }
+    weight_m_ = wm;
+    weight_k_ = wk;
   }
   X_ = llt_.solve(Eigen::MatrixXd(D_.transpose()));
   G_ = D_ * X_;
-  weight_m_ = wm;
-  weight_k_ = wk;
+  G_pose_version_ = pose_version_;
   return G_;
 }
 

@@ -40,6 +40,10 @@ class RopeSupport {
   virtual Eigen::VectorXd solvePointForce(const Eigen::Vector3d& f) const = 0;
   /// 1/2 z'^T M_z z' + 1/2 z^T K_z z [J] (strain energy measured from the self-weight state).
   virtual double energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const = 0;
+  /// Move the support point with the drives: slewing angle theta [rad] and trolley radius [m]
+  /// (SPEC 1.4). The constraint then holds the rope at the new point from the next step on
+  /// (a rheonomic constraint). No effect on a fixed anchor.
+  virtual void setPose(double /*theta*/, double /*radius*/) {}
   /// Displacement of the cab and jib-tip reference points from the undeformed structure,
   /// slewing frame [m] (SPEC 3.1 cab_d*, jib_tip_d*); zero for an anchor.
   virtual Eigen::Vector3d cabDisplacement(const Eigen::VectorXd& z) const = 0;
@@ -47,7 +51,7 @@ class RopeSupport {
 };
 
 /// A fixed point in the world frame (no coordinates).
-class FixedAnchor final : public RopeSupport {
+class FixedAnchor : public RopeSupport {
  public:
   explicit FixedAnchor(const Eigen::Vector3d& p) : p_(p) {}
   int size() const override { return 0; }
@@ -77,7 +81,7 @@ class FixedAnchor final : public RopeSupport {
     return Eigen::Vector3d::Zero();
   }
 
- private:
+ protected:
   Eigen::Vector3d p_;
 };
 

@@ -30,6 +30,7 @@ namespace crane_twin {
 /// trolley, cab and jib-tip translations out of u = T z.
 class StructureSupportBase : public RopeSupport {
  public:
+  void setPose(double theta, double radius) override;
   Eigen::Vector3d point(const Eigen::VectorXd& z) const override { return r0_ + D_ * z; }
   Eigen::Vector3d pointMotion(const Eigen::VectorXd& dz) const override { return D_ * dz; }
   Eigen::VectorXd pointForceToCoordinates(const Eigen::Vector3d& f) const override {
@@ -46,6 +47,9 @@ class StructureSupportBase : public RopeSupport {
   /// Build the rows for coordinates u = T z, T given by `modes` (nullptr: T = I).
   StructureSupportBase(const TowerCraneStructure& s, double trolley_radius, double slew_angle,
                        const Eigen::MatrixXd* modes);
+  const TowerCraneStructure& structure_;
+  Eigen::MatrixXd modes_;  ///< T = Phi (modal), empty for T = I
+  int pose_version_ = 0;   ///< bumped by setPose (D changed)
   Eigen::Vector3d r0_;
   Eigen::Matrix<double, 3, Eigen::Dynamic> D_, cab_, tip_;
 };
@@ -91,9 +95,21 @@ class FullStructureSupport final : public StructureSupportBase {
   SparseMatrix M_, K_, A_;
   double alpha_ = 0.0, beta_ = 0.0;
   double weight_m_ = -1.0, weight_k_ = -1.0;  ///< A_z = weight_m M + weight_k K, cached
+  int G_pose_version_ = -1;                   ///< pose G_ and X_ were computed for
   Eigen::Matrix3d G_ = Eigen::Matrix3d::Zero();
   Eigen::Matrix<double, Eigen::Dynamic, 3> X_;  ///< A_z^-1 D^T
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
+};
+
+/// A rigid structure (`structure.model: rigid`): the rope hangs from the undeformed trolley
+/// point R(theta) X_p(s); no structural coordinates.
+class RigidTrolleySupport final : public FixedAnchor {
+ public:
+  RigidTrolleySupport(const TowerCraneStructure& s, double trolley_radius, double slew_angle);
+  void setPose(double theta, double radius) override;
+
+ private:
+  const TowerCraneStructure& structure_;
 };
 
 }  // namespace crane_twin
