@@ -37,7 +37,9 @@ std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
                                                 theta);
 }
 
-CraneSimulation::CraneSimulation(const CraneModel& model) : model_(model) {
+CraneSimulation::CraneSimulation(const CraneModel& m) : model_(m) {
+  // Everything below refers to the own copy model_ (the support keeps references into it).
+  const CraneModel& model = model_;
   const Scene& sc = model.scene;
   if (sc.rope.model == "pendulum") {
     throw InputError(sc.file + ": key 'rope.model': the pendulum rope is not built yet");
@@ -49,8 +51,14 @@ CraneSimulation::CraneSimulation(const CraneModel& model) : model_(model) {
     throw InputError(sc.file + ": key 'slewing.inertial_loads': not built yet (no slewing drive)");
   }
   for (const auto& c : sc.commands) {
-    if (c.slew_rate != 0.0 || c.trolley_speed != 0.0 || c.hoist_speed != 0.0) {
-      throw InputError(sc.file + ": key 'commands': drives are not built yet");
+    if (c.hoist_speed != 0.0) {
+      throw InputError(sc.file + ": key 'commands': hoisting (hoist_speed) is not built yet");
+    }
+    if (c.slew_rate != 0.0 || c.trolley_speed != 0.0) {
+      if (!sc.crane) {
+        throw InputError(sc.file + ": key 'commands': drives need a crane (crane: none has none)");
+      }
+      drives_ = true;
     }
   }
   const double trolleyMass = sc.crane ? sc.crane->trolley_mass : 0.0;
@@ -71,7 +79,49 @@ CoupledState CraneSimulation::staticState(Eigen::Vector3d* holding_force) {
                                         sc.swing_azimuth_deg * M_PI / 180.0, holding_force);
 }
 
+void CraneSimulation::resetDrives() {
+  const Scene& sc = model_.scene;
+  if (!sc.crane) return;
+  const CraneDescription& c = *sc.crane;
+  slew_.emplace(c.slewing, sc.slew_angle);
+  trolley_.emplace(c.trolley, sc.trolley_radius, c.min_radius, c.max_radius);
+  slew_flags_ = trolley_flags_ = DriveFlags{};
+  manual_.reset();
+  support_->setPose(sc.slew_angle, sc.trolley_radius);
+}
+
+void CraneSimulation::setCommand(const CommandEntry& c) {
+  if (!std::isfinite(c.slew_rate) || !std::isfinite(c.trolley_speed) ||
+      !std::isfinite(c.hoist_speed)) {
+    throw std::invalid_argument("command with a non-finite rate");
+  }
+  if (c.hoist_speed != 0.0) throw InputError("hoisting (hoist_speed) is not built yet");
+  if (!model_.scene.crane && (c.slew_rate != 0.0 || c.trolley_speed != 0.0)) {
+    throw InputError("drives need a crane (crane: none has none)");
+  }
+  manual_ = c;
+  drives_ = true;
+}
+
+CommandEntry CraneSimulation::activeCommand(double t) const {
+  if (manual_) return *manual_;
+  CommandEntry active;
+  for (const auto& c : model_.scene.commands) {
+    if (c.t <= t + 1e-9) active = c;
+  }
+  return active;
+}
+
+void CraneSimulation::advanceDrives(double t, double dt) {
+  if (!drives_ || !slew_) return;
+  const CommandEntry c = activeCommand(t);
+  slew_flags_ = slew_->advance(c.slew_rate, dt);
+  trolley_flags_ = trolley_->advance(c.trolley_speed, dt);
+  support_->setPose(slew_->position(), trolley_->position());
+}
+
 CoupledState CraneSimulation::initialState() {
+  resetDrives();
   const Scene& sc = model_.scene;
   const double th = sc.swing_deg * M_PI / 180.0, az = sc.swing_azimuth_deg * M_PI / 180.0;
   CoupledState s;
@@ -91,7 +141,10 @@ CoupledState CraneSimulation::initialState() {
 
 void CraneSimulation::initialize() { state_ = initialState(); }
 
-void CraneSimulation::step() { solver_->step(state_); }
+void CraneSimulation::step() {
+  advanceDrives(state_.t, solver_->timeStep());
+  solver_->step(state_);
+}
 
 SeriesValues CraneSimulation::seriesOf(const CoupledState& s) const {
   const Scene& sc = model_.scene;
@@ -105,8 +158,8 @@ SeriesValues CraneSimulation::seriesOf(const CoupledState& s) const {
   v.trolley = support_->point(s.z);
   v.rope_top_tension = ropeTopTension(*rope_, s);
   v.rope_length = sc.rope.length;
-  v.slew_angle = sc.crane ? sc.slew_angle : 0.0;
-  v.trolley_radius = sc.crane ? sc.trolley_radius : 0.0;
+  v.slew_angle = slewAngle();
+  v.trolley_radius = trolleyRadius();
   v.energy = mechanicalEnergy(*rope_, *support_, s);
   v.constraint_error = (s.q.head<3>() - support_->point(s.z)).norm();
   return v;

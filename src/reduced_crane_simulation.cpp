@@ -37,6 +37,11 @@ const GeneralizedAlpha schemeFor(const Scene& sc) {
 }  // namespace
 
 ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model) : full_(model) {
+  if (full_.hasDrives()) {
+    throw InputError(model.scene.file + ": key 'commands': drives run with rope.model: full only in "
+                     "this version (the reduced model's subdomain rules for moving supports are "
+                     "not built yet)");
+  }
   solver_ = std::make_unique<ReducedOrderSolver>(full_.rope(), full_.support(),
                                                  schemeFor(model.scene), model.scene.time_step,
                                                  settingsFor(model));

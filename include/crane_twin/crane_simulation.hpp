@@ -6,11 +6,13 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
 
 #include "crane_twin/crane_model.hpp"
+#include "crane_twin/drive_axis.hpp"
 #include "crane_twin/full_order_solver.hpp"
 #include "crane_twin/modal_analysis.hpp"
 #include "crane_twin/rope_support.hpp"
@@ -43,6 +45,26 @@ class CraneSimulation final : public Simulation {
   const AncfRope& rope() const { return *rope_; }
   const FullOrderSolver& solver() const { return *solver_; }
 
+  // ---- Drives (SPEC 1.4), the API the ROS node uses ----
+  /// Operator command from now on, overriding the scene's schedule (t is ignored). Throws
+  /// std::invalid_argument for a non-finite value and InputError for what is not built
+  /// (hoisting, drives without a crane); the state is unchanged then.
+  void setCommand(const CommandEntry& command);
+  /// The command in force at time t: the manual one if set, else the schedule's last entry at
+  /// or before t (zero before the first).
+  CommandEntry activeCommand(double t) const;
+  double slewAngle() const { return slew_ ? slew_->position() : 0.0; }
+  double trolleyRadius() const { return trolley_ ? trolley_->position() : 0.0; }
+  double slewRate() const { return slew_ ? slew_->speed() : 0.0; }
+  double trolleySpeed() const { return trolley_ ? trolley_->speed() : 0.0; }
+  /// What limited the drives in the last step (speed or position limits).
+  const DriveFlags& slewFlags() const { return slew_flags_; }
+  const DriveFlags& trolleyFlags() const { return trolley_flags_; }
+  /// Advance the drives by dt under the active command and move the support (called before a
+  /// step by either model).
+  void advanceDrives(double t, double dt);
+  bool hasDrives() const { return drives_; }
+
   /// Output quantities of a full-coordinate state (also used by the reduced model).
   SeriesValues seriesOf(const CoupledState& s) const;
 
@@ -55,11 +77,16 @@ class CraneSimulation final : public Simulation {
   ModalBasis ropeModes(int count);
 
  private:
-  const CraneModel& model_;
+  const CraneModel model_;  ///< own copy: callers may pass a temporary
   std::unique_ptr<AncfRope> rope_;
   std::unique_ptr<RopeSupport> support_;
   std::unique_ptr<FullOrderSolver> solver_;
   CoupledState state_;
+  std::optional<DriveAxis> slew_, trolley_;
+  DriveFlags slew_flags_, trolley_flags_;
+  bool drives_ = false;  ///< the scene commands motion (or a command was set)
+  std::optional<CommandEntry> manual_;
+  void resetDrives();
 };
 
 /// The rope's support for a scene: FixedAnchor (crane: none: the anchor; structure: rigid: the
