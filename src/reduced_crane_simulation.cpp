@@ -37,17 +37,19 @@ const GeneralizedAlpha schemeFor(const Scene& sc) {
 }  // namespace
 
 ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model) : full_(model) {
-  if (full_.hasDrives()) {
-    throw InputError(model.scene.file + ": key 'commands': drives run with rope.model: full only in "
-                     "this version (the reduced model's subdomain rules for moving supports are "
-                     "not built yet)");
-  }
+
   solver_ = std::make_unique<ReducedOrderSolver>(full_.rope(), full_.support(),
                                                  schemeFor(model.scene), model.scene.time_step,
                                                  settingsFor(model));
 }
 
 void ReducedCraneSimulation::initialize() { solver_->initialize(full_.initialState()); }
+
+// The drives move the support first (the same scheme as the full model), then one reduced step.
+void ReducedCraneSimulation::step() {
+  full_.advanceDrives(solver_->state().t, full_.solver().timeStep());
+  solver_->step();
+}
 
 SeriesValues ReducedCraneSimulation::series() const {
   SeriesValues v = full_.seriesOf(solver_->fullState());

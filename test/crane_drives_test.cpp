@@ -118,3 +118,35 @@ TEST(CraneDrives, NodeFacingApiSetsCommandsAndRejectsBadOnes) {
 TEST(CraneDrives, ScenesRefuseWhatIsNotBuilt) {
   EXPECT_THROW(CraneSimulation(t8036({"commands=[{t: 0, hoist_speed: 0.5}]"})), InputError);
 }
+
+#include "crane_twin/reduced_crane_simulation.hpp"
+
+TEST(CraneDrives, ReducedTracksFullOnTheDriveScenes) {
+  // Issue 5: reduced against full on every drive scene, payload error at most 0.3 m (coarser
+  // mesh and step than the shipped scenes to keep the test short).
+  for (const char* scene : {"t8036_slew90.yaml", "t8036_trolley_80_to_30.yaml"}) {
+    const std::string path = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/" + scene;
+    const std::vector<std::string> sets = {"rope.elements=20", "time_step=0.01", "duration=40",
+                                           "structure.modes=20", "output_interval=0.1"};
+    auto with = [&](const char* model) {
+      std::vector<std::string> s = sets;
+      s.push_back(std::string("rope.model=") + model);
+      return buildCraneModel(loadScene(path, s));
+    };
+    CraneSimulation full(with("full"));
+    ReducedCraneSimulation red(with("reduced"));
+    full.initialize();
+    red.initialize();
+    double err = 0.0;
+    for (int k = 0; k < 4000; ++k) {
+      full.step();
+      red.step();
+      err = std::max(err, (full.series().payload - red.series().payload).norm());
+    }
+    std::printf("%s: reduced vs full payload error %.3g m, %d subdomains\n", scene, err,
+                red.subdomains());
+    EXPECT_LT(err, 0.3) << scene;
+    EXPECT_NEAR(red.drives().trolleyRadius(), full.trolleyRadius(), 1e-12);
+    EXPECT_NEAR(red.drives().slewAngle(), full.slewAngle(), 1e-12);
+  }
+}

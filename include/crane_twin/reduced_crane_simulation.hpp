@@ -16,7 +16,8 @@ class ReducedCraneSimulation final : public Simulation {
  public:
   explicit ReducedCraneSimulation(const CraneModel& model);
   void initialize() override;
-  void step() override { solver_->step(); }
+  void step() override;
+  CraneSimulation& drives() { return full_; }  ///< setCommand and the drive state
   double time() const override { return solver_->state().t; }
   SeriesValues series() const override;
   void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab, Eigen::Vector3d& jib_tip) const override {

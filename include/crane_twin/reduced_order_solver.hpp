@@ -17,8 +17,9 @@
 // (diagonal plus a rank-3 mass coupling) and z (the support's Schur complement G) and ends in
 // a 6 x 6 system for (u_b, lambda), factorised once per subdomain: O(r + k) work per step.
 //
-// A new subdomain starts after a step when max_j |r_j - r_j,m| > delta over the rope nodes
-// (paper eq. 10). At the switch K_m and Q_m are rebuilt at the current e, the modes updated
+// A new subdomain starts after a step when max_j |r_j - r_j,m - u_b| > delta over the rope
+// nodes: paper eq. (10) less the rigid translation of the whole rope, which the linearisation
+// represents exactly (the elastic force is translation-invariant). At the switch K_m and Q_m are rebuilt at the current e, the modes updated
 // from the previous block (warm, RopeModes) or recomputed, and the state carried over: positions
 // exactly (y = 0 at the new e_m), velocities and the generalized-alpha accelerations by the
 // M-orthogonal projection onto the new basis, M_r w = B^T M x. The projection can only lose
