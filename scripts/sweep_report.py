@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Markdown tables from crane_sim sweep CSVs (docs/accuracy-vs-time.md).
 
-Usage: scripts/sweep_report.py SWEEP.csv [SWEEP.csv ...]
+Usage: scripts/sweep_report.py [--headline] SWEEP.csv [SWEEP.csv ...]
+--headline prints one table row per scene (docs/accuracy-vs-time.md's headline table).
 Per scene: every setting, then the headline ratios: the paper's point (half the rope DOF at the
 scene's step and delta) against full order at the same step; reduced against full at the same
 step (1 ms); and at equal accuracy, the fastest setting of each model whose max payload error is
@@ -23,9 +24,42 @@ def describe(r):
             f"{float(r['time_step']) * 1e3:g} ms, {r['structure_modes']} structure modes")
 
 
+def headline(paths):
+    for path in paths:
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+        sc = rows[0]["scene"]
+        full = [r for r in rows if r["model"] == "full"]
+        red = [r for r in rows if r["model"] == "reduced"]
+        f1 = min(full, key=lambda r: float(r["time_step"]))
+        w1 = float(f1["wall_s"])
+        p = [r for r in red if int(r["rope_modes"]) > 100][0]
+        s = [r for r in red if r["time_step"] == f1["time_step"] and r["rope_modes"] == "10"
+             and abs(float(r["delta"]) - 0.05) < 1e-9][0]
+        ff, fr, f2 = fastest(full, 1e-3), fastest(red, 1e-3), fastest(red, 0.02)
+
+        def d(r):
+            if r["model"] == "full":
+                return f"{float(r['time_step']) * 1e3:g} ms"
+            return (f"{r['rope_modes']} modes, delta {float(r['delta']):g} m, "
+                    f"{float(r['time_step']) * 1e3:g} ms")
+
+        print(f"| {sc} | error {float(p['payload_error_max']):.1e} m (rope RMS "
+              f"{float(p['rope_rms_max']):.1e} m); {float(p['wall_s']):.3g} s against {w1:.3g} s: "
+              f"**{w1 / float(p['wall_s']):.2f}x** | {float(s['wall_s']):.3g} s, error "
+              f"{float(s['payload_error_max']):.1e} m: **{w1 / float(s['wall_s']):.3g}x** | full "
+              f"{d(ff)}: {float(ff['wall_s']):.3g} s ({float(ff['payload_error_max']):.1e} m); reduced "
+              f"{d(fr)}: {float(fr['wall_s']):.3g} s ({float(fr['payload_error_max']):.1e} m): "
+              f"**{float(ff['wall_s']) / float(fr['wall_s']):.2f}x** | {d(f2)}: rtf "
+              f"**{float(f2['rtf']):.0f}**, error {float(f2['payload_error_max']):.1e} m |")
+
+
 def main():
     if len(sys.argv) < 2:
         sys.exit(__doc__)
+    if sys.argv[1] == "--headline":
+        headline(sys.argv[2:])
+        return
     for path in sys.argv[1:]:
         with open(path) as f:
             rows = list(csv.DictReader(f))
