@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "crane_twin/config_reader.hpp"
 #include "crane_twin/crane_simulation.hpp"
@@ -22,7 +23,7 @@ CraneModel t8036(std::vector<std::string> sets) {
   return buildCraneModel(loadScene(kScene, sets));
 }
 
-void run(CraneSimulation& sim, double seconds) {
+void run(Simulation& sim, double seconds) {
   const long n = std::lround(seconds / 0.01);
   for (long k = 0; k < n; ++k) sim.step();
 }
@@ -149,4 +150,19 @@ TEST(CraneDrives, ReducedTracksFullOnTheDriveScenes) {
     EXPECT_NEAR(red.drives().trolleyRadius(), full.trolleyRadius(), 1e-12);
     EXPECT_NEAR(red.drives().slewAngle(), full.slewAngle(), 1e-12);
   }
+}
+
+TEST(CraneDrives, ReducedModelTakesCommandsThroughTheSimulationInterface) {
+  // The ROS node drives the reduced crane through Simulation::setCommand.
+  const std::unique_ptr<Simulation> sim = makeSimulation(
+      t8036({"structure.model=rigid", "rope.model=reduced", "rope.mode_count=6"}));
+  sim->initialize();
+  CommandEntry c;
+  c.trolley_speed = -0.3;
+  sim->setCommand(c);
+  run(*sim, 2.0);
+  EXPECT_NEAR(sim->series().trolley_radius, 80.0 - 0.09 - 0.42, 1e-9);
+  c.slew_rate = std::numeric_limits<double>::infinity();
+  EXPECT_THROW(sim->setCommand(c), std::invalid_argument);
+  EXPECT_TRUE(sim->series().payload.allFinite());
 }

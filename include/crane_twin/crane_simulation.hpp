@@ -49,7 +49,7 @@ class CraneSimulation final : public Simulation {
   /// Operator command from now on, overriding the scene's schedule (t is ignored). Throws
   /// std::invalid_argument for a non-finite value and InputError for what is not built
   /// (hoisting, drives without a crane); the state is unchanged then.
-  void setCommand(const CommandEntry& command);
+  void setCommand(const CommandEntry& command) override;
   /// The command in force at time t: the manual one if set, else the schedule's last entry at
   /// or before t (zero before the first).
   CommandEntry activeCommand(double t) const;

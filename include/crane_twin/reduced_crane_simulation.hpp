@@ -17,7 +17,8 @@ class ReducedCraneSimulation final : public Simulation {
   explicit ReducedCraneSimulation(const CraneModel& model);
   void initialize() override;
   void step() override;
-  CraneSimulation& drives() { return full_; }  ///< setCommand and the drive state
+  void setCommand(const CommandEntry& command) override { full_.setCommand(command); }
+  const CraneSimulation& drives() const { return full_; }  ///< the drive state
   double time() const override { return solver_->state().t; }
   SeriesValues series() const override;
   void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab, Eigen::Vector3d& jib_tip) const override {

@@ -9,6 +9,7 @@
 namespace crane_twin {
 
 struct CraneModel;
+struct CommandEntry;
 
 /// One row of the SPEC 3.1 time series.
 struct SeriesValues {
@@ -39,6 +40,10 @@ class Simulation {
   virtual void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab, Eigen::Vector3d& jib_tip) const = 0;
   virtual int ropeNodes() const = 0;
   virtual Eigen::Vector3d ropeNode(int j) const = 0;
+  /// Operator command from now on, overriding the scene's schedule (the node-facing API, SPEC
+  /// 1.4). Throws std::invalid_argument for a non-finite value and InputError for what is not
+  /// built; the state is unchanged then.
+  virtual void setCommand(const CommandEntry& command) = 0;
   /// Subdomains started and wall time in rope mode updates (0 for a full-order run).
   virtual int subdomains() const { return 0; }
   virtual double modeUpdateSeconds() const { return 0.0; }
