@@ -14,6 +14,21 @@ AncfRope::AncfRope(int elements, double length, double mass_per_length, double a
   element_.mass_per_length = mass_per_length;
   element_.axial_stiffness = axial_stiffness;
   element_.bending_stiffness = bending_stiffness;
+  assembleMass();
+}
+
+void AncfRope::setLength(double length) {
+  if (!(length > 0.0)) throw std::invalid_argument("rope length must be positive");
+  element_.length = length / elements_;
+  assembleMass();
+}
+
+void AncfRope::rescaleSlopes(Eigen::VectorXd& x, double from, double to) {
+  const double f = from / to;
+  for (int j = 0; 6 * j < x.size(); ++j) x.segment<3>(6 * j + 3) *= f;
+}
+
+void AncfRope::assembleMass() {
   const Matrix12 Me = ancfMassMatrix(element_);
   SparseAssembler A(dofs());
   std::vector<int> eq(12);
@@ -28,7 +43,7 @@ AncfRope::AncfRope(int elements, double length, double mass_per_length, double a
   M_ = A.build();
   // F_g = M * (rigid translation field g): exact consistent gravity, incl. the end mass.
   Eigen::VectorXd g = Eigen::VectorXd::Zero(dofs());
-  for (int j = 0; j < nodes(); ++j) g.segment<3>(6 * j) = gravity;
+  for (int j = 0; j < nodes(); ++j) g.segment<3>(6 * j) = gravity_;
   Fg_ = M_ * g;
 }
 

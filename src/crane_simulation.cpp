@@ -51,10 +51,7 @@ CraneSimulation::CraneSimulation(const CraneModel& m) : model_(m) {
     throw InputError(sc.file + ": key 'slewing.inertial_loads': not built yet (no slewing drive)");
   }
   for (const auto& c : sc.commands) {
-    if (c.hoist_speed != 0.0) {
-      throw InputError(sc.file + ": key 'commands': hoisting (hoist_speed) is not built yet");
-    }
-    if (c.slew_rate != 0.0 || c.trolley_speed != 0.0) {
+    if (c.slew_rate != 0.0 || c.trolley_speed != 0.0 || c.hoist_speed != 0.0) {
       if (!sc.crane) {
         throw InputError(sc.file + ": key 'commands': drives need a crane (crane: none has none)");
       }
@@ -85,7 +82,12 @@ void CraneSimulation::resetDrives() {
   const CraneDescription& c = *sc.crane;
   slew_.emplace(c.slewing, sc.slew_angle);
   trolley_.emplace(c.trolley, sc.trolley_radius, c.min_radius, c.max_radius);
-  slew_flags_ = trolley_flags_ = DriveFlags{};
+  hoist_.emplace(c.hoist, sc.rope.length, c.min_rope_length, c.max_rope_length);
+  if (rope_->length() != sc.rope.length) {
+    rope_->setLength(sc.rope.length);
+    solver_->refreshMass();
+  }
+  slew_flags_ = trolley_flags_ = hoist_flags_ = DriveFlags{};
   manual_.reset();
   support_->setPose(sc.slew_angle, sc.trolley_radius);
 }
@@ -95,12 +97,18 @@ void CraneSimulation::setCommand(const CommandEntry& c) {
       !std::isfinite(c.hoist_speed)) {
     throw std::invalid_argument("command with a non-finite rate");
   }
-  if (c.hoist_speed != 0.0) throw InputError("hoisting (hoist_speed) is not built yet");
-  if (!model_.scene.crane && (c.slew_rate != 0.0 || c.trolley_speed != 0.0)) {
+  if (!model_.scene.crane && (c.slew_rate != 0.0 || c.trolley_speed != 0.0 || c.hoist_speed != 0.0)) {
     throw InputError("drives need a crane (crane: none has none)");
   }
   manual_ = c;
   drives_ = true;
+}
+
+bool CraneSimulation::hoists() const {
+  if (manual_ && manual_->hoist_speed != 0.0) return true;
+  for (const auto& c : model_.scene.commands)
+    if (c.hoist_speed != 0.0) return true;
+  return false;
 }
 
 CommandEntry CraneSimulation::activeCommand(double t) const {
@@ -117,7 +125,20 @@ void CraneSimulation::advanceDrives(double t, double dt) {
   const CommandEntry c = activeCommand(t);
   slew_flags_ = slew_->advance(c.slew_rate, dt);
   trolley_flags_ = trolley_->advance(c.trolley_speed, dt);
+  hoist_flags_ = hoist_->advance(c.hoist_speed, dt);
   support_->setPose(slew_->position(), trolley_->position());
+}
+
+// Hoisting by uniform rescaling (docs/model.md): the new reference length is spread over all
+// elements, the geometry and nodal velocities are kept (slope coordinates rescaled), M and F_g
+// rebuilt so the rope's mass is mu L exactly.
+void CraneSimulation::applyRopeLength(CoupledState& s) {
+  if (!hoist_) return;
+  const double from = rope_->length(), to = hoist_->position();
+  if (to == from) return;
+  rope_->setLength(to);
+  solver_->refreshMass();
+  for (Eigen::VectorXd* x : {&s.q, &s.v, &s.qdd, &s.a}) AncfRope::rescaleSlopes(*x, from, to);
 }
 
 CoupledState CraneSimulation::initialState() {
@@ -143,6 +164,7 @@ void CraneSimulation::initialize() { state_ = initialState(); }
 
 void CraneSimulation::step() {
   advanceDrives(state_.t, solver_->timeStep());
+  applyRopeLength(state_);
   solver_->step(state_);
 }
 
@@ -157,7 +179,7 @@ SeriesValues CraneSimulation::seriesOf(const CoupledState& s) const {
   v.jib_tip = support_->jibTipDisplacement(s.z);
   v.trolley = support_->point(s.z);
   v.rope_top_tension = ropeTopTension(*rope_, s);
-  v.rope_length = sc.rope.length;
+  v.rope_length = rope_->length();
   v.slew_angle = slewAngle();
   v.trolley_radius = trolleyRadius();
   v.energy = mechanicalEnergy(*rope_, *support_, s);

@@ -55,6 +55,14 @@ FullOrderSolver::FullOrderSolver(const AncfRope& rope, RopeSupport& support,
   ldlt_.analyzePattern(A_);
 }
 
+void FullOrderSolver::refreshMass() {
+  const SparseMatrix& M = rope_.massMatrix();
+  std::size_t i = 0;
+  for (int c = 0; c < M.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(M, c); it; ++it) mass_value_.at(i++) = it.value();
+  if (i != mass_value_.size()) throw std::logic_error("rope mass pattern changed");
+}
+
 // A = [ massWeight M + stiffWeight K(q)   C_q^T ; C_q  -G ],  C_q = [I3 0 ...].
 void FullOrderSolver::assemble(const Eigen::VectorXd& q, double massWeight, double stiffWeight,
                                const Eigen::Matrix3d& G, Eigen::VectorXd& Q) {

@@ -37,6 +37,10 @@ const GeneralizedAlpha schemeFor(const Scene& sc) {
 }  // namespace
 
 ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model) : full_(model) {
+  if (full_.hoists()) {
+    throw InputError(model.scene.file + ": key 'commands': hoisting runs with rope.model: full "
+                     "only in this version");
+  }
 
   solver_ = std::make_unique<ReducedOrderSolver>(full_.rope(), full_.support(),
                                                  schemeFor(model.scene), model.scene.time_step,
@@ -44,6 +48,13 @@ ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model) : full_(
 }
 
 void ReducedCraneSimulation::initialize() { solver_->initialize(full_.initialState()); }
+
+void ReducedCraneSimulation::setCommand(const CommandEntry& command) {
+  if (command.hoist_speed != 0.0) {
+    throw InputError("hoisting runs with rope.model: full only in this version");
+  }
+  full_.setCommand(command);
+}
 
 // The drives move the support first (the same scheme as the full model), then one reduced step.
 void ReducedCraneSimulation::step() {

@@ -36,6 +36,14 @@ class AncfRope {
   const SparseMatrix& massMatrix() const { return M_; }
   const Eigen::VectorXd& gravityForce() const { return Fg_; }
 
+  /// Hoisting by uniform rescaling (SPEC 1.4): every element's reference length becomes
+  /// length / elements; M and F_g are rebuilt (rope mass mu L exactly, same pattern). Throws
+  /// std::invalid_argument for a non-positive length.
+  void setLength(double length);
+  /// Rescale a coordinate-like vector (q, v, q'') so the rope's geometry is unchanged under a
+  /// length change from `from` to `to`: positions stay, slopes r_x scale by from / to.
+  static void rescaleSlopes(Eigen::VectorXd& x, double from, double to);
+
   /// Elastic force Q(q); appends the tangent K(q) as triplets when `tangent` is not null.
   void elasticForce(const Eigen::VectorXd& q, Eigen::VectorXd& Q,
                     std::vector<Eigen::Triplet<double>>* tangent = nullptr) const;
@@ -54,6 +62,7 @@ class AncfRope {
   Eigen::Vector3d gravity_;
   SparseMatrix M_;
   Eigen::VectorXd Fg_;
+  void assembleMass();
 };
 
 }  // namespace crane_twin

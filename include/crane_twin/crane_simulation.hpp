@@ -47,8 +47,8 @@ class CraneSimulation final : public Simulation {
 
   // ---- Drives (SPEC 1.4), the API the ROS node uses ----
   /// Operator command from now on, overriding the scene's schedule (t is ignored). Throws
-  /// std::invalid_argument for a non-finite value and InputError for what is not built
-  /// (hoisting, drives without a crane); the state is unchanged then.
+  /// std::invalid_argument for a non-finite value and InputError for drives without a crane;
+  /// the state is unchanged then.
   void setCommand(const CommandEntry& command) override;
   /// The command in force at time t: the manual one if set, else the schedule's last entry at
   /// or before t (zero before the first).
@@ -57,6 +57,9 @@ class CraneSimulation final : public Simulation {
   double trolleyRadius() const { return trolley_ ? trolley_->position() : 0.0; }
   double slewRate() const { return slew_ ? slew_->speed() : 0.0; }
   double trolleySpeed() const { return trolley_ ? trolley_->speed() : 0.0; }
+  double ropeLength() const { return rope_->length(); }
+  double hoistSpeed() const { return hoist_ ? hoist_->speed() : 0.0; }
+  const DriveFlags& hoistFlags() const { return hoist_flags_; }
   /// What limited the drives in the last step (speed or position limits).
   const DriveFlags& slewFlags() const { return slew_flags_; }
   const DriveFlags& trolleyFlags() const { return trolley_flags_; }
@@ -64,6 +67,10 @@ class CraneSimulation final : public Simulation {
   /// step by either model).
   void advanceDrives(double t, double dt);
   bool hasDrives() const { return drives_; }
+  /// Bring the rope to the hoist drive's length, rescaling a full-coordinate state with it.
+  void applyRopeLength(CoupledState& s);
+  /// True when the schedule or the manual command asks for hoisting.
+  bool hoists() const;
 
   /// Output quantities of a full-coordinate state (also used by the reduced model).
   SeriesValues seriesOf(const CoupledState& s) const;
@@ -82,8 +89,8 @@ class CraneSimulation final : public Simulation {
   std::unique_ptr<RopeSupport> support_;
   std::unique_ptr<FullOrderSolver> solver_;
   CoupledState state_;
-  std::optional<DriveAxis> slew_, trolley_;
-  DriveFlags slew_flags_, trolley_flags_;
+  std::optional<DriveAxis> slew_, trolley_, hoist_;
+  DriveFlags slew_flags_, trolley_flags_, hoist_flags_;
   bool drives_ = false;  ///< the scene commands motion (or a command was set)
   std::optional<CommandEntry> manual_;
   void resetDrives();

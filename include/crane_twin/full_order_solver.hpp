@@ -92,6 +92,9 @@ class FullOrderSolver {
   /// One generalized-alpha step of size h. Throws NumericalFailure.
   void step(CoupledState& s);
 
+  /// Re-read the rope's mass matrix after AncfRope::setLength (same pattern).
+  void refreshMass();
+
   /// Total mechanical energy: 1/2 v^T M v + U(q) - F_g^T q (gravity potential, zero at q = 0)
   /// plus the support's kinetic and strain energy.
   double energy(const CoupledState& s) const;
