@@ -36,11 +36,21 @@ const GeneralizedAlpha schemeFor(const Scene& sc) {
 }
 }  // namespace
 
+namespace {
+// Tried: the full model's rescaling at every step with a new subdomain each time. With all modes
+// kept and cold updates it reproduces the full run; with 10 to 40 modes the payload left the
+// full run by tens of metres within 10 s of hoisting (the truncated basis lacks the static
+// stretch a uniform length change asks for). A static-correction vector in the basis is next.
+const char* const kNoReducedHoisting =
+    "hoisting runs with rope.model: full only in this version (the reduced basis cannot follow "
+    "a changing rope length yet)";
+}  // namespace
+
 ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model) : full_(model) {
   if (full_.hoists()) {
-    throw InputError(model.scene.file + ": key 'commands': hoisting runs with rope.model: full "
-                     "only in this version");
+    throw InputError(model.scene.file + ": key 'commands': " + kNoReducedHoisting);
   }
+
 
   solver_ = std::make_unique<ReducedOrderSolver>(full_.rope(), full_.support(),
                                                  schemeFor(model.scene), model.scene.time_step,
@@ -50,9 +60,7 @@ ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model) : full_(
 void ReducedCraneSimulation::initialize() { solver_->initialize(full_.initialState()); }
 
 void ReducedCraneSimulation::setCommand(const CommandEntry& command) {
-  if (command.hoist_speed != 0.0) {
-    throw InputError("hoisting runs with rope.model: full only in this version");
-  }
+  if (command.hoist_speed != 0.0) throw InputError(kNoReducedHoisting);
   full_.setCommand(command);
 }
 

@@ -247,21 +247,24 @@ void ReducedOrderSolver::step() {
   }
   if (maxNodeIncrement() > settings_.delta) {
     // Switch: rebuild the linearisation at the current state and carry the state over.
-    const Eigen::VectorXd e = e_m_ + expand(s_.y), v = expand(s_.yd), acc = expand(s_.ydd),
-                          aa = expand(s_.ya);
-    try {
-      startSubdomain(e);
-    } catch (const std::runtime_error& ex) {
-      throw NumericalFailure(at(s_.t) + ": rope mode update failed: " + ex.what());
-    }
-    s_.y.setZero(r + 3);
-    s_.yd = project(v);
-    s_.ydd = project(acc);
-    s_.ya = project(aa);
-    const Eigen::VectorXd vr = expand(s_.yd);
-    const SparseMatrix& M = rope_.massMatrix();
-    stats_.projection_energy_loss += 0.5 * (v.dot(M * v) - vr.dot(M * vr));
+    restartAt(fullState());
   }
+}
+
+void ReducedOrderSolver::restartAt(const CoupledState& f) {
+  const int r = settings_.kept_modes;
+  try {
+    startSubdomain(f.q);
+  } catch (const std::runtime_error& ex) {
+    throw NumericalFailure(at(s_.t) + ": rope mode update failed: " + ex.what());
+  }
+  s_.y.setZero(r + 3);
+  s_.yd = project(f.v);
+  s_.ydd = project(f.qdd);
+  s_.ya = project(f.a);
+  const Eigen::VectorXd vr = expand(s_.yd);
+  const SparseMatrix& M = rope_.massMatrix();
+  stats_.projection_energy_loss += 0.5 * (f.v.dot(M * f.v) - vr.dot(M * vr));
 }
 
 CoupledState ReducedOrderSolver::fullState() const {

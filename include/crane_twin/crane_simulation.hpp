@@ -59,6 +59,8 @@ class CraneSimulation final : public Simulation {
   double trolleySpeed() const { return trolley_ ? trolley_->speed() : 0.0; }
   double ropeLength() const { return rope_->length(); }
   double hoistSpeed() const { return hoist_ ? hoist_->speed() : 0.0; }
+  /// The hoist drive's length; the rope's own (ropeLength) catches up in applyRopeLength.
+  double hoistLength() const { return hoist_ ? hoist_->position() : rope_->length(); }
   const DriveFlags& hoistFlags() const { return hoist_flags_; }
   /// What limited the drives in the last step (speed or position limits).
   const DriveFlags& slewFlags() const { return slew_flags_; }

@@ -17,7 +17,6 @@ class ReducedCraneSimulation final : public Simulation {
   explicit ReducedCraneSimulation(const CraneModel& model);
   void initialize() override;
   void step() override;
-  /// As CraneSimulation's; hoisting is refused (InputError) in the reduced model for now.
   void setCommand(const CommandEntry& command) override;
   const CraneSimulation& drives() const { return full_; }  ///< the drive state
   double time() const override { return solver_->state().t; }

@@ -74,6 +74,11 @@ class ReducedOrderSolver {
   /// NumericalFailure on a non-finite state or a failed mode update.
   void step();
 
+  /// Start a new subdomain at a full-coordinate state (the rope's positions, velocities and
+  /// generalized-alpha accelerations; z and lambda stay): what a switch does, also used when
+  /// the rope's length changed under it (hoisting).
+  void restartAt(const CoupledState& full);
+
   const ReducedState& state() const { return s_; }
   const ReducedStatistics& statistics() const { return stats_; }
   const RopeModes& modes() const { return modes_; }
