@@ -28,6 +28,7 @@ ReducedSettings settingsFor(const CraneModel& model) {
   s.kept_modes = keptRopeModes(model);
   s.delta = r.subdomain_delta;
   s.update = r.mode_update == "cold" ? ModeUpdate::cold : ModeUpdate::warm;
+  s.residual_tolerance = r.subdomain_residual;
   return s;
 }
 const GeneralizedAlpha schemeFor(const Scene& sc) {

@@ -97,6 +97,11 @@ void ReducedOrderSolver::startSubdomain(const Eigen::VectorXd& e) {
   node_rows_.resize(3 * rope_.nodes(), r);
   for (int j = 0; j < rope_.nodes(); ++j) node_rows_.middleRows<3>(3 * j) = phi_.middleRows<3>(6 * j);
   e_m_ = e;
+  if (settings_.residual_tolerance > 0.0) {
+    K_m_ = K;
+    Q_m_ = Q;
+  }
+  steps_in_subdomain_ = 0;
   G_step_.setConstant(std::nan(""));  // forces the step system's refactorisation
   ++stats_.subdomains;
   stats_.max_mode_residual =
@@ -245,7 +250,11 @@ void ReducedOrderSolver::step() {
   if (!s_.y.allFinite() || !s_.yd.allFinite() || !s_.z.allFinite() || !s_.lambda.allFinite()) {
     throw NumericalFailure(at(s_.t) + ": non-finite reduced state");
   }
-  if (maxNodeIncrement() > settings_.delta) {
+  ++steps_in_subdomain_;
+  const bool residualCut = settings_.residual_tolerance > 0.0 &&
+                           steps_in_subdomain_ % settings_.residual_check_steps == 0 &&
+                           linearisationResidual() > settings_.residual_tolerance;
+  if (residualCut || maxNodeIncrement() > settings_.delta) {
     // Switch: rebuild the linearisation at the current state and carry the state over.
     restartAt(fullState());
   }
@@ -265,6 +274,17 @@ void ReducedOrderSolver::restartAt(const CoupledState& f) {
   const Eigen::VectorXd vr = expand(s_.yd);
   const SparseMatrix& M = rope_.massMatrix();
   stats_.projection_energy_loss += 0.5 * (f.v.dot(M * f.v) - vr.dot(M * vr));
+}
+
+// max over nodes of |Q(e) - Q_m - K_m (e - e_m)| (translational rows) [N].
+double ReducedOrderSolver::linearisationResidual() const {
+  const Eigen::VectorXd de = expand(s_.y);
+  Eigen::VectorXd Q;
+  rope_.elasticForce(e_m_ + de, Q);
+  const Eigen::VectorXd r = Q - Q_m_ - K_m_ * de;
+  double worst = 0.0;
+  for (int j = 0; j < rope_.nodes(); ++j) worst = std::max(worst, r.segment<3>(6 * j).norm());
+  return worst;
 }
 
 CoupledState ReducedOrderSolver::fullState() const {

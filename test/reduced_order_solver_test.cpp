@@ -61,8 +61,10 @@ TEST(ReducedOrder, CompleteBasisWithTinyDeltaReproducesTheFullModel) {
   EXPECT_LT(diff, integrator);
 }
 
-TEST(ReducedOrder, ErrorFallsAsDeltaShrinks) {
-  // Rope only, 10 modes, 4 s of a 2.3 deg swing at 5 ms: payload error against the full run.
+namespace {
+// Rope only, 10 modes, 4 s of a 2.3 deg swing at 5 ms: (payload error against the full run,
+// subdomains) for each setting's overrides.
+std::vector<std::pair<double, int>> ropeOnlyErrors(const std::vector<std::vector<std::string>>& settings) {
   const std::vector<std::string> base = {"rope.elements=30", "initial.mode=equilibrium",
                                          "time_step=0.005"};
   auto sets = [&](std::vector<std::string> extra) {
@@ -71,15 +73,27 @@ TEST(ReducedOrder, ErrorFallsAsDeltaShrinks) {
   };
   CraneSimulation f(model("rope_pendulum_chrono.yaml", sets({"rope.model=full"})));
   const auto pf = path(f, 800);
-  double previous = 1e300;
-  for (double delta : {0.4, 0.1, 0.025}) {
-    ReducedCraneSimulation r(model("rope_pendulum_chrono.yaml",
-                                   sets({"rope.model=reduced", "rope.mode_count=10",
-                                         "rope.subdomain_delta=" + std::to_string(delta)})));
+  std::vector<std::pair<double, int>> out;
+  for (const auto& extra : settings) {
+    std::vector<std::string> s = sets({"rope.model=reduced", "rope.mode_count=10"});
+    s.insert(s.end(), extra.begin(), extra.end());
+    ReducedCraneSimulation r(model("rope_pendulum_chrono.yaml", s));
     const double e = maxDistance(path(r, 800), pf);
-    std::printf("delta %.3f m: payload error %.3g m, %d subdomains\n", delta, e, r.subdomains());
-    EXPECT_LT(e, previous) << delta;
-    previous = e;
+    out.emplace_back(e, r.subdomains());
+  }
+  return out;
+}
+}  // namespace
+
+TEST(ReducedOrder, ErrorFallsAsDeltaShrinks) {
+  const std::vector<double> deltas = {0.4, 0.1, 0.025};
+  std::vector<std::vector<std::string>> settings;
+  for (double d : deltas) settings.push_back({"rope.subdomain_delta=" + std::to_string(d)});
+  const auto r = ropeOnlyErrors(settings);
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    std::printf("delta %.3f m: payload error %.3g m, %d subdomains\n", deltas[i], r[i].first,
+                r[i].second);
+    if (i > 0) EXPECT_LT(r[i].first, r[i - 1].first) << deltas[i];
   }
 }
 
@@ -113,4 +127,21 @@ TEST(ReducedOrder, T8036PayloadTracksTheFullRunWithSoundModesAndConstraint) {
   EXPECT_LT(st.max_mode_residual, 1e-4);
   EXPECT_GE(st.projection_energy_loss, -1e-9);
   EXPECT_EQ(st.cold_fallbacks, 0);
+}
+
+TEST(ReducedOrder, ResidualCriterionCutsSubdomainsAndErrorFallsWithItsTolerance) {
+  // The adaptive criterion alone (delta 100 m as a backstop): the linearisation residual's
+  // tolerance is the accuracy knob.
+  const std::vector<double> tols = {300.0, 30.0, 3.0};
+  std::vector<std::vector<std::string>> settings;
+  for (double t : tols) {
+    settings.push_back({"rope.subdomain_delta=100", "rope.subdomain_residual=" + std::to_string(t)});
+  }
+  const auto r = ropeOnlyErrors(settings);
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    std::printf("residual tolerance %.0f N: payload error %.3g m, %d subdomains\n", tols[i],
+                r[i].first, r[i].second);
+    EXPECT_GT(r[i].second, 1);
+    if (i > 0) EXPECT_LT(r[i].first, r[i - 1].first) << tols[i];
+  }
 }

@@ -42,6 +42,11 @@ struct ReducedSettings {
   int kept_modes = 10;         ///< fixed-top rope modes kept (plus the 3 translations)
   double delta = 0.05;         ///< subdomain criterion [m]
   ModeUpdate update = ModeUpdate::warm;
+  /// Adaptive alternative to delta (issue 4): > 0 starts a new subdomain when the linearisation
+  /// residual |Q(e) - Q_m - K_m (e - e_m)| exceeds this force [N] at any node (checked every
+  /// `residual_check_steps` steps); delta then only bounds the displacement as a backstop.
+  double residual_tolerance = 0.0;
+  int residual_check_steps = 5;
   RopeModeSettings modes;      ///< shift, guard, sweeps (kept is set from kept_modes)
 };
 
@@ -123,6 +128,10 @@ class ReducedOrderSolver {
   Eigen::Matrix<double, 6, 6> kkt_;            ///< step's 6 x 6 system, factorised
   Eigen::PartialPivLU<Eigen::Matrix<double, 6, 6>> kkt_lu_;
   Eigen::Matrix3d G_step_;
+  SparseMatrix K_m_;            ///< tangent at e_m (kept for the residual criterion)
+  Eigen::VectorXd Q_m_;
+  long steps_in_subdomain_ = 0;
+  double linearisationResidual() const;
 };
 
 }  // namespace crane_twin
