@@ -48,7 +48,7 @@ CraneSimulation::CraneSimulation(const CraneModel& m) : model_(m) {
     throw InputError(sc.file + ": key 'rope.damping': rope material damping is not built yet");
   }
   if (sc.slew_inertial_loads) {
-    throw InputError(sc.file + ": key 'slewing.inertial_loads': not built yet (no slewing drive)");
+    throw InputError(sc.file + ": key 'slewing.inertial_loads': the inertial loads of slewing on the structure are not built yet");
   }
   for (const auto& c : sc.commands) {
     if (c.slew_rate != 0.0 || c.trolley_speed != 0.0 || c.hoist_speed != 0.0) {

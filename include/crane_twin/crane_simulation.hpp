@@ -1,8 +1,8 @@
 // A scene run at full order (SPEC 1.5): the ANCF rope, what holds it (a fixed anchor for
-// crane: none or structure: rigid, the T8036 structure in modal or full coordinates), the
-// initial state of SPEC 2 (equilibrium with a holding force, or stress-free), time stepping,
-// and the SPEC 3.1 output rows. The ROS-free unit the CLI's `run`, `static` and
-// `modes --part rope` use.
+// crane: none, the T8036 structure rigid, modal or in full coordinates), the drives (SPEC 1.4:
+// slewing, trolley, hoisting), the initial state of SPEC 2 (equilibrium with a holding force,
+// or stress-free), time stepping, and the SPEC 3.1 output rows. The ROS-free unit the CLI's
+// `run`, `static` and `modes --part rope` use; the reduced model builds on it.
 #pragma once
 
 #include <memory>
@@ -24,7 +24,8 @@ class CraneSimulation final : public Simulation {
  public:
   /// Builds the rope and its support. Integrates at full order whatever rope.model says (the
   /// reduced model starts from this model's equilibrium and linearises it). Throws InputError
-  /// for what this version cannot run (pendulum rope, drives, rope damping), naming the key.
+  /// for what this version cannot run (pendulum rope, rope damping, slewing inertial loads,
+  /// drives without a crane), naming the key.
   explicit CraneSimulation(const CraneModel& model);
 
   void initialize() override;
