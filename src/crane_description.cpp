@@ -1,5 +1,7 @@
 #include "crane_twin/crane_description.hpp"
 
+#include <algorithm>
+
 #include "crane_twin/config_reader.hpp"
 
 #include <cmath>
@@ -136,6 +138,14 @@ CraneDescription loadCraneDescription(const std::string& path) {
   }
   root.finish();
   return c;
+}
+
+double allowedLoad(const CraneDescription& c, double r) {
+  const double r1 = c.rated_moment / c.max_load;
+  if (r <= r1) return c.max_load;
+  const double m1 = c.rated_moment, m2 = c.load_at_max_radius * c.max_radius;
+  const double f = std::min(1.0, (r - r1) / (c.max_radius - r1));
+  return (m1 + (m2 - m1) * f) / r;
 }
 
 }  // namespace crane_twin

@@ -184,6 +184,17 @@ SeriesValues CraneSimulation::seriesOf(const CoupledState& s) const {
   v.trolley_radius = trolleyRadius();
   v.energy = mechanicalEnergy(*rope_, *support_, s);
   v.constraint_error = (s.q.head<3>() - support_->point(s.z)).norm();
+  v.tension_ratio = v.rope_top_tension / model_.rope.breaking_force;
+  if (v.tension_ratio > 1.0) v.warnings |= kTensionOverBreakingForce;
+  if (sc.crane) {
+    v.load_chart_ratio = sc.payload_mass / allowedLoad(*sc.crane, trolleyRadius());
+    if (v.load_chart_ratio > 1.0 + 1e-12) v.warnings |= kOutsideLoadChart;
+  }
+  if (hoist_flags_.at_position_limit) v.warnings |= kRopeLengthAtLimit;
+  if (trolley_flags_.at_position_limit) v.warnings |= kTrolleyAtLimit;
+  if (slew_flags_.speed_limited || trolley_flags_.speed_limited || hoist_flags_.speed_limited) {
+    v.warnings |= kCommandLimited;
+  }
   return v;
 }
 

@@ -11,7 +11,19 @@ namespace crane_twin {
 const char* const kSeriesHeader =
     "t,payload_x,payload_y,payload_z,payload_vx,payload_vy,payload_vz,cab_dx,cab_dy,cab_dz,"
     "jib_tip_dx,jib_tip_dy,jib_tip_dz,trolley_x,trolley_y,trolley_z,rope_top_tension,"
-    "rope_length,slew_angle,trolley_radius,energy,constraint_error,subdomains";
+    "rope_length,slew_angle,trolley_radius,energy,constraint_error,subdomains,"
+    "tension_ratio,load_chart_ratio,warnings";
+
+const char* warningName(int bit) {
+  switch (bit) {
+    case kTensionOverBreakingForce: return "rope tension over its breaking force";
+    case kOutsideLoadChart: return "load outside the load chart at this radius";
+    case kRopeLengthAtLimit: return "rope length at its limit";
+    case kTrolleyAtLimit: return "trolley at its radius limit";
+    case kCommandLimited: return "command above a drive's speed limit, limited";
+    default: return "unknown warning";
+  }
+}
 
 void writeSeriesRow(std::ostream& out, const SeriesValues& v) {
   auto put = [&out](const Eigen::Vector3d& x) { out << ',' << x.x() << ',' << x.y() << ',' << x.z(); };
@@ -23,7 +35,7 @@ void writeSeriesRow(std::ostream& out, const SeriesValues& v) {
   put(v.trolley);
   out << ',' << v.rope_top_tension << ',' << v.rope_length << ',' << v.slew_angle << ','
       << v.trolley_radius << ',' << v.energy << ',' << v.constraint_error << ',' << v.subdomains
-      << '\n';
+      << ',' << v.tension_ratio << ',' << v.load_chart_ratio << ',' << v.warnings << '\n';
 }
 
 void Simulation::writeNodeRows(std::ostream& out) const {

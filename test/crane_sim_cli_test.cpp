@@ -116,11 +116,12 @@ TEST(CraneSimCli, RunWritesSpecColumnsAndSummary) {
   EXPECT_EQ(header,
             "t,payload_x,payload_y,payload_z,payload_vx,payload_vy,payload_vz,cab_dx,cab_dy,cab_dz,"
             "jib_tip_dx,jib_tip_dy,jib_tip_dz,trolley_x,trolley_y,trolley_z,rope_top_tension,"
-            "rope_length,slew_angle,trolley_radius,energy,constraint_error,subdomains");
+            "rope_length,slew_angle,trolley_radius,energy,constraint_error,subdomains,"
+            "tension_ratio,load_chart_ratio,warnings");
   int rows = 0;
   for (std::string row; std::getline(in, row);) {
     ++rows;
-    EXPECT_EQ(std::count(row.begin(), row.end(), ','), 22) << row;
+    EXPECT_EQ(std::count(row.begin(), row.end(), ','), 25) << row;
     EXPECT_EQ(row.find("nan"), std::string::npos) << row;
   }
   EXPECT_EQ(rows, 3);  // t = 0, 0.05, 0.1 at output_interval 0.05
@@ -267,7 +268,8 @@ TEST(CraneSimCli, CompareRefusesMalformedCsv) {
         out << c.text;
       } else if (std::string(c.name) == "cmp_text.csv") {
         out << header << "\n0,abc";  // payload_x not a number, the row otherwise complete
-        for (int k = 0; k < 21; ++k) out << ",0";
+        const long fields = std::count(header.begin(), header.end(), ',') + 1;
+        for (long k = 2; k < fields; ++k) out << ",0";
         out << "\n";
       } else {
         out << header << "\n0,1,2\n";
@@ -300,4 +302,33 @@ TEST(CraneSimCli, QuickSweepWritesOneRowPerSetting) {
   }
   EXPECT_EQ(reference, 1);
   EXPECT_EQ(rows, 1 + 2 + 4);  // reference, full at 1 and 10 ms, reduced 10 modes x 2 deltas x 2 steps
+}
+
+TEST(CraneSimCli, PhysicalWarningsReachTheCsvAndStderr) {
+  // 5 t at 80 m is over the chart's 3.6 t there: every row carries bit 2 and its ratio 5/3.6,
+  // and stderr says so once, with a count at the end.
+  const std::string csv = ::testing::TempDir() + "crane_sim_warn.csv";
+  const Result r = run("run " + kScene + " --set rope.model=full --set structure.model=rigid"
+                       " --set rope.elements=10 --set duration=0.1 --set payload.mass=5000"
+                       " --out " + csv + " --quiet");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("warning: t = 0.000 s: load outside the load chart"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("load outside the load chart at this radius in 11 output rows"), std::string::npos)
+      << r.out;
+  std::ifstream in(csv);
+  std::string header, row;
+  std::getline(in, header);
+  int rows = 0;
+  while (std::getline(in, row)) {
+    ++rows;
+    EXPECT_NEAR(column(header, row, "load_chart_ratio"), 5000.0 / 3600.0, 1e-9);
+    EXPECT_EQ(static_cast<int>(column(header, row, "warnings")) & 2, 2);
+    // Tension ratio: (5000 + 2044 + 228) g / (2 x 345 kN), about 0.10.
+    EXPECT_NEAR(column(header, row, "tension_ratio"), (7044.0 + 228.0) * 9.81 / 690e3, 0.01);
+  }
+  EXPECT_EQ(rows, 11);
+  // Within the chart: no warning.
+  const Result ok = run("run " + kScene + " --set rope.model=full --set structure.model=rigid"
+                        " --set rope.elements=10 --set duration=0.1 --quiet");
+  EXPECT_EQ(ok.out.find("warning"), std::string::npos) << ok.out;
 }

@@ -77,6 +77,12 @@ struct CraneDescription {
   double jibRailHeight() const { return mast_height + slewing_height; }
 };
 
+/// Allowed payload [kg] at radius r [m] (the load chart, SPEC 1.2 data): max_load out to the
+/// radius where max_load reaches the rated moment, then a load moment falling linearly in r
+/// from rated_moment there to load_at_max_radius x max_radius at the jib tip. (An assumption
+/// shaped like published T8036 charts; the paper gives only the three figures.)
+double allowedLoad(const CraneDescription& c, double radius);
+
 /// Read and validate a crane description file. Throws InputError naming file and key.
 CraneDescription loadCraneDescription(const std::string& path);
 

@@ -20,7 +20,22 @@ struct SeriesValues {
   double rope_top_tension = 0.0, rope_length = 0.0, slew_angle = 0.0, trolley_radius = 0.0;
   double energy = 0.0, constraint_error = 0.0;
   int subdomains = 0;
+  // Beyond the SPEC columns: the physical warnings a crane engineer expects (issue 7).
+  double tension_ratio = 0.0;     ///< rope top tension / breaking force of all falls
+  double load_chart_ratio = 0.0;  ///< payload / allowed load at the current radius (0: no crane)
+  int warnings = 0;               ///< bit set of Warning
 };
+
+/// Bits of SeriesValues::warnings.
+enum Warning : int {
+  kTensionOverBreakingForce = 1,  ///< tension_ratio > 1
+  kOutsideLoadChart = 2,          ///< load_chart_ratio > 1
+  kRopeLengthAtLimit = 4,         ///< the hoist is braking for or holding at a length limit
+  kTrolleyAtLimit = 8,            ///< the trolley is braking for or holding at a radius limit
+  kCommandLimited = 16,           ///< a command above a drive's speed limit was limited
+};
+/// Human-readable name of one warning bit.
+const char* warningName(int bit);
 
 /// SPEC 3.1 time-series columns, in order.
 extern const char* const kSeriesHeader;

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <map>
 
 #include <cstdio>
 #include <iostream>
@@ -115,9 +116,21 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   const bool bar = !r.quiet && isatty(fileno(stdout)) && isatty(fileno(stderr));
   if (series) series << ct::kSeriesHeader << "\n";
   if (nodes) nodes << "t,node,x,y,z\n";
+  // Physical warnings (issue 7): each kind reported on stderr when first seen, with a count of
+  // the output rows that carried it at the end; the CSV carries them in every row.
+  std::map<int, long> warned;
   auto emit = [&]() {
-    if (series) ct::writeSeriesRow(series, sim->series());
+    const ct::SeriesValues v = sim->series();
+    if (series) ct::writeSeriesRow(series, v);
     if (nodes) sim->writeNodeRows(nodes);
+    for (int bit = 1; bit <= ct::kCommandLimited; bit <<= 1) {
+      if (!(v.warnings & bit)) continue;
+      if (warned[bit]++ == 0) {
+        if (bar) std::fprintf(stderr, "\n");
+        std::fprintf(stderr, "warning: t = %.3f s: %s (tension_ratio %.3f, load_chart_ratio %.3f)\n",
+                     v.t, ct::warningName(bit), v.tension_ratio, v.load_chart_ratio);
+      }
+    }
   };
   double wall = 0.0;  // the steps alone: no setup, no output
   try {
@@ -139,6 +152,9 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
     return 1;
   }
   if (bar) std::fprintf(stderr, "\n");
+  for (const auto& [bit, rows] : warned) {
+    std::fprintf(stderr, "warning: %s in %ld output rows\n", ct::warningName(bit), rows);
+  }
   const double simS = steps * sc.time_step;
   std::printf("summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=%d mode_updates_s=%.3g\n",
               wall, simS, simS / wall, steps, sim->subdomains(), sim->modeUpdateSeconds());
