@@ -64,10 +64,8 @@ CraneSimulation::CraneSimulation(const CraneModel& m) : model_(m) {
                                      model.rope.bending_stiffness, model.end_mass,
                                      Eigen::Vector3d(0.0, 0.0, -sc.gravity), trolleyMass);
   support_ = makeRopeSupport(model);
-  const GeneralizedAlpha ga = sc.integrator == "newmark"
-                                  ? GeneralizedAlpha::newmark()
-                                  : GeneralizedAlpha::fromRhoInf(sc.rho_inf);
-  solver_ = std::make_unique<FullOrderSolver>(*rope_, *support_, ga, sc.time_step);
+  solver_ = std::make_unique<FullOrderSolver>(*rope_, *support_, GeneralizedAlpha::forScene(sc),
+                                              sc.time_step);
 }
 
 CoupledState CraneSimulation::staticState(Eigen::Vector3d* holding_force) {

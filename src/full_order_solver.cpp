@@ -2,6 +2,8 @@
 
 #include <Eigen/UmfPackSupport>
 
+#include "crane_twin/scene.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -19,6 +21,29 @@ GeneralizedAlpha GeneralizedAlpha::fromRhoInf(double rho) {
 }
 
 GeneralizedAlpha GeneralizedAlpha::newmark() { return GeneralizedAlpha{}; }
+
+GeneralizedAlpha GeneralizedAlpha::forScene(const Scene& sc) {
+  return sc.integrator == "newmark" ? newmark() : fromRhoInf(sc.rho_inf);
+}
+
+void GeneralizedAlpha::predict(double h, const Eigen::VectorXd& xdd, const Eigen::VectorXd& a,
+                               Eigen::VectorXd& x, Eigen::VectorXd& xd) const {
+  const Eigen::VectorXd aNew = (xdd - alpha_m * a) / (1.0 - alpha_m);
+  x += h * xd + h * h * ((0.5 - beta) * a + beta * aNew);
+  xd += h * ((1.0 - gamma) * a + gamma * aNew);
+}
+
+void GeneralizedAlpha::correct(double h, const Eigen::VectorXd& dx, Eigen::VectorXd& x,
+                               Eigen::VectorXd& xd, Eigen::VectorXd& xdd) const {
+  x += dx;
+  xd += gamma / (h * beta) * dx;
+  xdd += (1.0 - alpha_m) / (h * h * beta * (1.0 - alpha_f)) * dx;
+}
+
+Eigen::VectorXd GeneralizedAlpha::nextA(const Eigen::VectorXd& xdd0, const Eigen::VectorXd& a0,
+                                        const Eigen::VectorXd& xdd) const {
+  return (alpha_f * xdd0 - alpha_m * a0 + (1.0 - alpha_f) * xdd) / (1.0 - alpha_m);
+}
 
 FullOrderSolver::FullOrderSolver(const AncfRope& rope, RopeSupport& support,
                                  const GeneralizedAlpha& scheme, double time_step,
@@ -225,24 +250,11 @@ void FullOrderSolver::initializeAccelerations(CoupledState& s) {
 
 void FullOrderSolver::step(CoupledState& s) {
   const int n = rope_.dofs(), m = support_.size();
-  const double h = h_, am = ga_.alpha_m, af = ga_.alpha_f, be = ga_.beta, ga = ga_.gamma;
-  const double betaP = (1.0 - am) / (h * h * be * (1.0 - af));
-  const double gammaP = ga / (h * be);
-  const double bh2 = be * h * h;
-  // Predictor with q''_{n+1} = q''_n (rope and support alike).
+  const double h = h_, bh2 = ga_.beta * h * h, massWeight = ga_.massWeight();
   const Eigen::VectorXd qdd0 = s.qdd, a0 = s.a, zdd0 = s.zdd, za0 = s.za;
-  {
-    const Eigen::VectorXd aNew = (qdd0 - am * a0) / (1.0 - am);
-    s.q += h * s.v + h * h * ((0.5 - be) * a0 + be * aNew);
-    s.v += h * ((1.0 - ga) * a0 + ga * aNew);
-  }
-  if (m > 0) {
-    const Eigen::VectorXd zaNew = (zdd0 - am * za0) / (1.0 - am);
-    s.z += h * s.zd + h * h * ((0.5 - be) * za0 + be * zaNew);
-    s.zd += h * ((1.0 - ga) * za0 + ga * zaNew);
-  }
-  const double massWeight = (1.0 - am) / (1.0 - af);
-  const Eigen::Matrix3d G = support_.setIterationWeights(massWeight, ga * h, bh2);
+  ga_.predict(h, qdd0, a0, s.q, s.v);
+  if (m > 0) ga_.predict(h, zdd0, za0, s.z, s.zd);
+  const Eigen::Matrix3d G = support_.setIterationWeights(massWeight, ga_.gamma * h, bh2);
   Eigen::VectorXd Q, Azr, rz;
   const SparseMatrix& M = rope_.massMatrix();
   int it = 0;
@@ -259,16 +271,12 @@ void FullOrderSolver::step(CoupledState& s) {
     factorize("t = " + std::to_string(s.t + h) + " s");
     const Eigen::VectorXd dx = ldlt_.solve(rhs);
     const Eigen::VectorXd dq = dx.head(n);
-    s.q += dq;
-    s.v += gammaP * dq;
-    s.qdd += betaP * dq;
+    ga_.correct(h, dq, s.q, s.v, s.qdd);
     s.lambda += dx.tail<3>() / bh2;
     double dmax = dq.cwiseAbs().maxCoeff();
     if (m > 0) {
       const Eigen::VectorXd dz = Azr + support_.solvePointForce(dx.tail<3>());
-      s.z += dz;
-      s.zd += gammaP * dz;
-      s.zdd += betaP * dz;
+      ga_.correct(h, dz, s.z, s.zd, s.zdd);
       // Structure coordinates are modal amplitudes [sqrt(kg) m] or displacements [m]; their
       // effect at the support point bounds the change that matters for the rope.
       dmax = std::max(dmax, support_.pointMotion(dz).cwiseAbs().maxCoeff());
@@ -286,8 +294,8 @@ void FullOrderSolver::step(CoupledState& s) {
                              std::to_string(newton_.max_iterations) + " iterations");
     }
   }
-  s.a = (af * qdd0 - am * a0 + (1.0 - af) * s.qdd) / (1.0 - am);
-  if (m > 0) s.za = (af * zdd0 - am * za0 + (1.0 - af) * s.zdd) / (1.0 - am);
+  s.a = ga_.nextA(qdd0, a0, s.qdd);
+  if (m > 0) s.za = ga_.nextA(zdd0, za0, s.zdd);
   s.t += h;
   s.newton_iterations = it;
 }

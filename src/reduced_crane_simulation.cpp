@@ -31,10 +31,6 @@ ReducedSettings settingsFor(const CraneModel& model) {
   s.residual_tolerance = r.subdomain_residual;
   return s;
 }
-const GeneralizedAlpha schemeFor(const Scene& sc) {
-  return sc.integrator == "newmark" ? GeneralizedAlpha::newmark()
-                                    : GeneralizedAlpha::fromRhoInf(sc.rho_inf);
-}
 }  // namespace
 
 namespace {
@@ -54,7 +50,7 @@ ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model) : full_(
 
 
   solver_ = std::make_unique<ReducedOrderSolver>(full_.rope(), full_.support(),
-                                                 schemeFor(model.scene), model.scene.time_step,
+                                                 GeneralizedAlpha::forScene(model.scene), model.scene.time_step,
                                                  settingsFor(model));
 }
 

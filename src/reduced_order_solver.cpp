@@ -132,14 +132,7 @@ Eigen::VectorXd ReducedOrderSolver::solveWeighted(double a, double c, double k,
   if (cached) {
     x = kkt_lu_.solve(rhs);
   } else {
-    const Eigen::Matrix3d G = support_.setIterationWeights(a, c, k);
-    Eigen::Matrix<double, 6, 6> A;
-    A.topLeftCorner<3, 3>() =
-        a * Mbb_ - a * a * Mcb_.transpose() * d.cwiseInverse().asDiagonal() * Mcb_;
-    A.topRightCorner<3, 3>().setIdentity();
-    A.bottomLeftCorner<3, 3>().setIdentity();
-    A.bottomRightCorner<3, 3>() = -G;
-    x = A.partialPivLu().solve(rhs);
+    x = eliminatedMatrix(a, k, support_.setIterationWeights(a, c, k)).partialPivLu().solve(rhs);
   }
   Eigen::VectorXd dy(r + 3);
   dy.tail<3>() = x.head<3>();
@@ -147,6 +140,19 @@ Eigen::VectorXd ReducedOrderSolver::solveWeighted(double a, double c, double k,
   dmu = x.tail<3>();
   if (m > 0) dz = Azr + support_.solvePointForce(dmu);
   return dy;
+}
+
+// The 6 x 6 system in (u_b, lambda) left after eliminating p_c and z (header): with
+// d = a + k Omega^2, [a M_bb - a^2 M_cb^T diag(1/d) M_cb, I; I, -G].
+Eigen::Matrix<double, 6, 6> ReducedOrderSolver::eliminatedMatrix(double a, double k,
+                                                                 const Eigen::Matrix3d& G) const {
+  const Eigen::VectorXd d = Eigen::VectorXd::Constant(omega2_.size(), a) + k * omega2_;
+  Eigen::Matrix<double, 6, 6> A;
+  A.topLeftCorner<3, 3>() = a * Mbb_ - a * a * Mcb_.transpose() * d.cwiseInverse().asDiagonal() * Mcb_;
+  A.topRightCorner<3, 3>().setIdentity();
+  A.bottomLeftCorner<3, 3>().setIdentity();
+  A.bottomRightCorner<3, 3>() = -G;
+  return A;
 }
 
 void ReducedOrderSolver::initializeAccelerations() {
@@ -196,31 +202,14 @@ double ReducedOrderSolver::maxNodeIncrement() const {
 
 void ReducedOrderSolver::step() {
   const int r = static_cast<int>(phi_.cols()), m = support_.size();
-  const double h = h_, am = ga_.alpha_m, af = ga_.alpha_f, be = ga_.beta, ga = ga_.gamma;
-  const double betaP = (1.0 - am) / (h * h * be * (1.0 - af));
-  const double gammaP = ga / (h * be);
-  const double bh2 = be * h * h, massWeight = (1.0 - am) / (1.0 - af);
+  const double h = h_, bh2 = ga_.beta * h * h, massWeight = ga_.massWeight();
   const Eigen::VectorXd ydd0 = s_.ydd, ya0 = s_.ya, zdd0 = s_.zdd, za0 = s_.za;
-  {
-    const Eigen::VectorXd aNew = (ydd0 - am * ya0) / (1.0 - am);
-    s_.y += h * s_.yd + h * h * ((0.5 - be) * ya0 + be * aNew);
-    s_.yd += h * ((1.0 - ga) * ya0 + ga * aNew);
-  }
-  if (m > 0) {
-    const Eigen::VectorXd aNew = (zdd0 - am * za0) / (1.0 - am);
-    s_.z += h * s_.zd + h * h * ((0.5 - be) * za0 + be * aNew);
-    s_.zd += h * ((1.0 - ga) * za0 + ga * aNew);
-  }
+  ga_.predict(h, ydd0, ya0, s_.y, s_.yd);
+  if (m > 0) ga_.predict(h, zdd0, za0, s_.z, s_.zd);
   // The step's 6 x 6 system: refactorised when the subdomain or the support's G changes.
-  const Eigen::Matrix3d G = support_.setIterationWeights(massWeight, ga * h, bh2);
+  const Eigen::Matrix3d G = support_.setIterationWeights(massWeight, ga_.gamma * h, bh2);
   if (!(G == G_step_)) {
-    const Eigen::VectorXd d = Eigen::VectorXd::Constant(r, massWeight) + bh2 * omega2_;
-    kkt_.topLeftCorner<3, 3>() = massWeight * Mbb_ - massWeight * massWeight * Mcb_.transpose() *
-                                                         d.cwiseInverse().asDiagonal() * Mcb_;
-    kkt_.topRightCorner<3, 3>().setIdentity();
-    kkt_.bottomLeftCorner<3, 3>().setIdentity();
-    kkt_.bottomRightCorner<3, 3>() = -G;
-    kkt_lu_.compute(kkt_);
+    kkt_lu_.compute(eliminatedMatrix(massWeight, bh2, G));
     G_step_ = G;
   }
   // Residuals scaled by beta h^2 (as the full-order solver's); the system is linear: one solve.
@@ -234,18 +223,14 @@ void ReducedOrderSolver::step() {
   if (m > 0) rz = -bh2 * (support_.internalForce(s_.z, s_.zd, s_.zdd) - support_.pointForceToCoordinates(s_.lambda));
   const Eigen::Vector3d rc = -(e_m_.head<3>() + s_.y.tail<3>() - support_.point(s_.z));
   Eigen::Vector3d dmu;
-  const Eigen::VectorXd dy = solveWeighted(massWeight, ga * h, bh2, ry, rz, rc, dz, dmu, true);
-  s_.y += dy;
-  s_.yd += gammaP * dy;
-  s_.ydd += betaP * dy;
+  const Eigen::VectorXd dy = solveWeighted(massWeight, ga_.gamma * h, bh2, ry, rz, rc, dz, dmu, true);
+  ga_.correct(h, dy, s_.y, s_.yd, s_.ydd);
   s_.lambda += dmu / bh2;
   if (m > 0) {
-    s_.z += dz;
-    s_.zd += gammaP * dz;
-    s_.zdd += betaP * dz;
-    s_.za = (af * zdd0 - am * za0 + (1.0 - af) * s_.zdd) / (1.0 - am);
+    ga_.correct(h, dz, s_.z, s_.zd, s_.zdd);
+    s_.za = ga_.nextA(zdd0, za0, s_.zdd);
   }
-  s_.ya = (af * ydd0 - am * ya0 + (1.0 - af) * s_.ydd) / (1.0 - am);
+  s_.ya = ga_.nextA(ydd0, ya0, s_.ydd);
   s_.t += h;
   if (!s_.y.allFinite() || !s_.yd.allFinite() || !s_.z.allFinite() || !s_.lambda.allFinite()) {
     throw NumericalFailure(at(s_.t) + ": non-finite reduced state");

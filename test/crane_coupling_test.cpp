@@ -110,12 +110,16 @@ TEST(CraneCoupling, EnergyConservedUndampedAndNeverGrowsWithDamping) {
       sim.step();
       const double E = sim.solver().energy(sim.state());
       maxDev = std::max(maxDev, std::abs(E - E0));
-      if (damped) EXPECT_LE(E, Eprev + 1e-9 * std::abs(E0)) << "t = " << sim.state().t;
+      if (damped) {
+        EXPECT_LE(E, Eprev + 1e-9 * std::abs(E0)) << "t = " << sim.state().t;
+      }
       Eprev = E;
     }
     std::printf("%s: max |E - E0| %.4g J, swing energy %.4g J\n", damped ? "damped" : "undamped",
                 maxDev, Eswing);
-    if (!damped) EXPECT_LT(maxDev, 0.005 * Eswing);
+    if (!damped) {
+      EXPECT_LT(maxDev, 0.005 * Eswing);
+    }
   }
 }
 

@@ -93,7 +93,9 @@ TEST(ReducedOrder, ErrorFallsAsDeltaShrinks) {
   for (std::size_t i = 0; i < r.size(); ++i) {
     std::printf("delta %.3f m: payload error %.3g m, %d subdomains\n", deltas[i], r[i].first,
                 r[i].second);
-    if (i > 0) EXPECT_LT(r[i].first, r[i - 1].first) << deltas[i];
+    if (i > 0) {
+      EXPECT_LT(r[i].first, r[i - 1].first) << deltas[i];
+    }
   }
 }
 
@@ -142,6 +144,8 @@ TEST(ReducedOrder, ResidualCriterionCutsSubdomainsAndErrorFallsWithItsTolerance)
     std::printf("residual tolerance %.0f N: payload error %.3g m, %d subdomains\n", tols[i],
                 r[i].first, r[i].second);
     EXPECT_GT(r[i].second, 1);
-    if (i > 0) EXPECT_LT(r[i].first, r[i - 1].first) << tols[i];
+    if (i > 0) {
+      EXPECT_LT(r[i].first, r[i - 1].first) << tols[i];
+    }
   }
 }

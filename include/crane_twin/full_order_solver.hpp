@@ -39,10 +39,28 @@ class NumericalFailure : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+struct Scene;
+
 struct GeneralizedAlpha {
   double alpha_m = 0.0, alpha_f = 0.0, gamma = 0.5, beta = 0.25;
   static GeneralizedAlpha fromRhoInf(double rho_inf);
   static GeneralizedAlpha newmark();
+  /// The scene's integrator (generalized_alpha with its rho_inf, or newmark).
+  static GeneralizedAlpha forScene(const Scene& scene);
+
+  /// Predictor of a step of size h with x''_{n+1} = x''_n: advances x and x' in place from
+  /// the start values x'' and a (Arnold & Bruls 2007, Alg. 1).
+  void predict(double h, const Eigen::VectorXd& xdd, const Eigen::VectorXd& a, Eigen::VectorXd& x,
+               Eigen::VectorXd& xd) const;
+  /// Corrector: a position increment dx moves x' by gamma/(h beta) dx and x'' by
+  /// (1 - alpha_m)/(h^2 beta (1 - alpha_f)) dx.
+  void correct(double h, const Eigen::VectorXd& dx, Eigen::VectorXd& x, Eigen::VectorXd& xd,
+               Eigen::VectorXd& xdd) const;
+  /// The acceleration-like variable at the step's end from its start (xdd0, a0) and x''_{n+1}.
+  Eigen::VectorXd nextA(const Eigen::VectorXd& xdd0, const Eigen::VectorXd& a0,
+                        const Eigen::VectorXd& xdd) const;
+  /// Weight of M in the beta h^2-scaled iteration matrix: (1 - alpha_m)/(1 - alpha_f).
+  double massWeight() const { return (1.0 - alpha_m) / (1.0 - alpha_f); }
 };
 
 struct CoupledState {

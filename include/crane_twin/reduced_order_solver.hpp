@@ -107,6 +107,7 @@ class ReducedOrderSolver {
                                 const Eigen::VectorXd& rz, const Eigen::Vector3d& rc,
                                 Eigen::VectorXd& dz, Eigen::Vector3d& dmu, bool cached);
   void initializeAccelerations();
+  Eigen::Matrix<double, 6, 6> eliminatedMatrix(double a, double k, const Eigen::Matrix3d& G) const;
   double maxNodeIncrement() const;
 
   const AncfRope& rope_;
@@ -125,8 +126,7 @@ class ReducedOrderSolver {
   Eigen::Matrix3d Mbb_;                        ///< T^T M T (total mass I3)
   Eigen::VectorXd f_;                          ///< [Phi_c; T]^T (F_g - Q_m)
   Eigen::MatrixXd node_rows_;                  ///< 3 nodes x r: node positions of Phi_c
-  Eigen::Matrix<double, 6, 6> kkt_;            ///< step's 6 x 6 system, factorised
-  Eigen::PartialPivLU<Eigen::Matrix<double, 6, 6>> kkt_lu_;
+  Eigen::PartialPivLU<Eigen::Matrix<double, 6, 6>> kkt_lu_;  ///< the step's 6 x 6 system
   Eigen::Matrix3d G_step_;
   SparseMatrix K_m_;            ///< tangent at e_m (kept for the residual criterion)
   Eigen::VectorXd Q_m_;
