@@ -52,18 +52,10 @@ RopeTangents ropeTangents() {
                                                  {"rope.model=full", "structure.modes=20"}));
   CraneSimulation sim(m);
   sim.initialize();
-  auto tangent = [&](const Eigen::VectorXd& q) {
-    Eigen::VectorXd Q;
-    std::vector<Eigen::Triplet<double>> t;
-    sim.rope().elasticForce(q, Q, &t);
-    SparseMatrix K(q.size(), q.size());
-    K.setFromTriplets(t.begin(), t.end());
-    return K;
-  };
   RopeTangents r;
-  r.K0 = tangent(sim.state().q);
+  r.K0 = sim.rope().tangentStiffness(sim.state().q);
   for (int k = 0; k < 100; ++k) sim.step();
-  r.K1 = tangent(sim.state().q);
+  r.K1 = sim.rope().tangentStiffness(sim.state().q);
   r.M = sim.rope().massMatrix();
   return r;
 }

@@ -64,6 +64,16 @@ void AncfRope::elasticForce(const Eigen::VectorXd& q, Eigen::VectorXd& Q,
   }
 }
 
+SparseMatrix AncfRope::tangentStiffness(const Eigen::VectorXd& q, Eigen::VectorXd* force) const {
+  Eigen::VectorXd Q;
+  std::vector<Eigen::Triplet<double>> t;
+  elasticForce(q, Q, &t);
+  SparseMatrix K(dofs(), dofs());
+  K.setFromTriplets(t.begin(), t.end());
+  if (force) *force = std::move(Q);
+  return K;
+}
+
 double AncfRope::elasticEnergy(const Eigen::VectorXd& q) const {
   double U = 0.0;
   for (int k = 0; k < elements_; ++k) U += ancfElasticEnergy(element_, q.segment<12>(6 * k));

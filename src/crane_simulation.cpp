@@ -4,6 +4,7 @@
 #include <iomanip>
 
 #include "crane_twin/config_reader.hpp"
+#include "crane_twin/rope_modes.hpp"
 #include "crane_twin/structure_support.hpp"
 
 namespace crane_twin {
@@ -200,17 +201,9 @@ SeriesValues CraneSimulation::series() const { return seriesOf(state_); }
 
 ModalBasis CraneSimulation::ropeModes(int count) {
   const CoupledState eq = solver_->solveSwingEquilibrium(0.0, 0.0);
-  const int n = rope_->dofs();
-  Eigen::VectorXd Q;
-  std::vector<Eigen::Triplet<double>> t;
-  rope_->elasticForce(eq.q, Q, &t);
-  // Remove the top node's three position DOFs (held by the constraint).
-  std::vector<Eigen::Triplet<double>> tk;
-  for (const auto& x : t)
-    if (x.row() >= 3 && x.col() >= 3) tk.emplace_back(x.row() - 3, x.col() - 3, x.value());
-  SparseMatrix K(n - 3, n - 3);
-  K.setFromTriplets(tk.begin(), tk.end());
-  const SparseMatrix M = rope_->massMatrix().bottomRightCorner(n - 3, n - 3);
+  // The top node's three position DOFs are held by the constraint.
+  const SparseMatrix K = withoutTopPosition(rope_->tangentStiffness(eq.q));
+  const SparseMatrix M = withoutTopPosition(rope_->massMatrix());
   ModalOptions opt;
   opt.count = count;
   opt.shift = -1e-3;

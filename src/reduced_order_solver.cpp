@@ -58,10 +58,7 @@ void ReducedOrderSolver::startSubdomain(const Eigen::VectorXd& e) {
   const auto t0 = std::chrono::steady_clock::now();
   const int n = rope_.dofs();
   Eigen::VectorXd Q;
-  std::vector<Eigen::Triplet<double>> trip;
-  rope_.elasticForce(e, Q, &trip);
-  SparseMatrix K(n, n);
-  K.setFromTriplets(trip.begin(), trip.end());
+  const SparseMatrix K = rope_.tangentStiffness(e, &Q);
   const SparseMatrix& M = rope_.massMatrix();
   if (modes_.phi.size() == 0 || settings_.update == ModeUpdate::cold) {
     if (modes_.phi.size() != 0) ++stats_.eigen_solves;

@@ -163,6 +163,15 @@ double column(const std::string& header, const std::string& row, const std::stri
   return std::stod(v[it - h.begin()]);
 }
 
+// Header and data rows of a CSV file.
+std::vector<std::string> csvRows(const std::string& path, std::string& header) {
+  std::ifstream in(path);
+  std::getline(in, header);
+  std::vector<std::string> rows;
+  for (std::string row; std::getline(in, row);) rows.push_back(row);
+  return rows;
+}
+
 TEST(CraneSimCli, T8036RunsAtFullOrderWithStructureOutputs) {
   const std::string csv = ::testing::TempDir() + "crane_sim_t8036.csv";
   for (const char* model : {"modal", "full"}) {
@@ -170,12 +179,9 @@ TEST(CraneSimCli, T8036RunsAtFullOrderWithStructureOutputs) {
                          " --set structure.modes=10 --set rope.elements=12 --set duration=0.2"
                          " --set output_interval=0.01 --out " + csv + " --quiet");
     ASSERT_EQ(r.status, 0) << r.out;
-    std::ifstream in(csv);
-    std::string header, row;
-    std::getline(in, header);
-    int rows = 0;
-    while (std::getline(in, row)) {
-      ++rows;
+    std::string header;
+    const std::vector<std::string> rows = csvRows(csv, header);
+    for (const std::string& row : rows) {
       EXPECT_EQ(row.find("nan"), std::string::npos) << row;
       // The loaded jib bends down and the mast leans out along the jib (x).
       EXPECT_LT(column(header, row, "jib_tip_dz"), -0.5) << model;
@@ -184,7 +190,7 @@ TEST(CraneSimCli, T8036RunsAtFullOrderWithStructureOutputs) {
       EXPECT_LT(column(header, row, "constraint_error"), 1e-8) << model;
       EXPECT_EQ(column(header, row, "trolley_radius"), 80.0);
     }
-    EXPECT_EQ(rows, 21) << model;
+    EXPECT_EQ(rows.size(), 21u) << model;
   }
 }
 
@@ -315,18 +321,15 @@ TEST(CraneSimCli, PhysicalWarningsReachTheCsvAndStderr) {
   EXPECT_NE(r.out.find("warning: t = 0.000 s: load outside the load chart"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("load outside the load chart at this radius in 11 output rows"), std::string::npos)
       << r.out;
-  std::ifstream in(csv);
-  std::string header, row;
-  std::getline(in, header);
-  int rows = 0;
-  while (std::getline(in, row)) {
-    ++rows;
+  std::string header;
+  const std::vector<std::string> rows = csvRows(csv, header);
+  for (const std::string& row : rows) {
     EXPECT_NEAR(column(header, row, "load_chart_ratio"), 5000.0 / 3600.0, 1e-9);
     EXPECT_EQ(static_cast<int>(column(header, row, "warnings")) & 2, 2);
     // Tension ratio: (5000 + 2044 + 228) g / (2 x 345 kN), about 0.10.
     EXPECT_NEAR(column(header, row, "tension_ratio"), (7044.0 + 228.0) * 9.81 / 690e3, 0.01);
   }
-  EXPECT_EQ(rows, 11);
+  EXPECT_EQ(rows.size(), 11u);
   // Within the chart: no warning.
   const Result ok = run("run " + kScene + " --set rope.model=full --set structure.model=rigid"
                         " --set rope.elements=10 --set duration=0.1 --quiet");

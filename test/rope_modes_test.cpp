@@ -19,12 +19,8 @@ struct Linearised {
 
 // Rope tangent and mass at a state q.
 Linearised linearise(const AncfRope& rope, const Eigen::VectorXd& q) {
-  Eigen::VectorXd Q;
-  std::vector<Eigen::Triplet<double>> t;
-  rope.elasticForce(q, Q, &t);
   Linearised l;
-  l.K.resize(rope.dofs(), rope.dofs());
-  l.K.setFromTriplets(t.begin(), t.end());
+  l.K = rope.tangentStiffness(q);
   l.M = rope.massMatrix();
   l.q = q;
   return l;

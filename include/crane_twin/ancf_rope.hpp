@@ -47,6 +47,8 @@ class AncfRope {
   /// Elastic force Q(q); appends the tangent K(q) as triplets when `tangent` is not null.
   void elasticForce(const Eigen::VectorXd& q, Eigen::VectorXd& Q,
                     std::vector<Eigen::Triplet<double>>* tangent = nullptr) const;
+  /// Assembled tangent stiffness K(q) = dQ/dq (n x n); Q(q) into *force when given.
+  SparseMatrix tangentStiffness(const Eigen::VectorXd& q, Eigen::VectorXd* force = nullptr) const;
   double elasticEnergy(const Eigen::VectorXd& q) const;
 
   static Eigen::Vector3d nodePosition(const Eigen::VectorXd& q, int node) {
