@@ -78,12 +78,14 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
       }
   if (!quick) {
     // The paper's setting: half of the rope DOF, the scene's delta and step.
-    const int n = 6 * (scene.rope.elements + 1);
+    Scene half = scene;
+    half.rope.mode_count = 0;
+    half.rope.mode_fraction = 0.5;
     g.push_back({"reduced",
                  {"rope.model=reduced", "rope.mode_count=0", "rope.mode_fraction=0.5",
                   "time_step=" + num(scene.time_step)},
-                 scene.time_step, static_cast<int>(std::lround(0.5 * n)) - 3,
-                 scene.rope.subdomain_delta, scene.structure_modes});
+                 scene.time_step, keptRopeModes(half), scene.rope.subdomain_delta,
+                 scene.structure_modes});
     if (scene.crane && scene.structure_model == "modal") {
       g.push_back({"reduced",
                    {"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_delta=0.2",

@@ -7,9 +7,10 @@
 
 namespace crane_twin {
 
-int keptRopeModes(const CraneModel& model) {
-  const Scene& sc = model.scene;
-  const int n = model.ropeDofs();
+int keptRopeModes(const CraneModel& model) { return keptRopeModes(model.scene); }
+
+int keptRopeModes(const Scene& sc) {
+  const int n = 6 * (sc.rope.elements + 1);
   if (sc.rope.mode_count > 0) {
     if (sc.rope.mode_count > n - 3) {
       throw InputError(sc.file + ": key 'rope.mode_count': at most " + std::to_string(n - 3) +

@@ -11,6 +11,7 @@ namespace crane_twin {
 /// Rope modes kept for a scene: rope.mode_count if set, else mode_fraction of the rope DOF less
 /// the three translations, at least 1 (SPEC 1.6). Throws InputError naming the key.
 int keptRopeModes(const CraneModel& model);
+int keptRopeModes(const Scene& scene);
 
 class ReducedCraneSimulation final : public Simulation {
  public:
