@@ -20,14 +20,14 @@ Eigen::Matrix<double, 3, Eigen::Dynamic> pointRows(const TowerCraneStructure& s,
   return P;
 }
 
+}  // namespace
+
 Eigen::Matrix3d slewRotation(double theta) {
   return Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()).toRotationMatrix();
 }
 
-}  // namespace
-
-// Trolley point X_p(s) and its rows: the rail interpolation weights at radius s.
-static Eigen::Vector3d trolleyPoint(const TowerCraneStructure& s, double radius) {
+// Trolley point X_p(s): the rail interpolation weights at radius s.
+Eigen::Vector3d trolleyPoint(const TowerCraneStructure& s, double radius) {
   Eigen::Vector3d X = Eigen::Vector3d::Zero();
   for (const auto& w : s.trolleyWeights(radius)) X += w.weight * s.nodes[w.node];
   return X;
@@ -72,6 +72,10 @@ RigidTrolleySupport::RigidTrolleySupport(const TowerCraneStructure& s, double tr
 
 void RigidTrolleySupport::setPose(double theta, double radius) {
   p_ = slewRotation(theta) * trolleyPoint(structure_, radius);
+}
+
+Eigen::VectorXd RigidTrolleySupport::structureDisplacement(const Eigen::VectorXd&) const {
+  return Eigen::VectorXd::Zero(structure_.free_dofs);
 }
 
 ModalStructureSupport::ModalStructureSupport(const TowerCraneStructure& s, const ModalBasis& b,

@@ -202,9 +202,9 @@ TEST(CraneDrives, ReducedTracksFullOnTheDriveScenes) {
     std::printf("%s: reduced vs full payload error %.3g m, %d subdomains\n", scene, err,
                 red.subdomains());
     EXPECT_LT(err, 0.3) << scene;
-    EXPECT_NEAR(red.drives().trolleyRadius(), full.trolleyRadius(), 1e-12);
-    EXPECT_NEAR(red.drives().slewAngle(), full.slewAngle(), 1e-12);
-    EXPECT_NEAR(red.drives().ropeLength(), full.ropeLength(), 1e-12);
+    EXPECT_NEAR(red.crane().trolleyRadius(), full.trolleyRadius(), 1e-12);
+    EXPECT_NEAR(red.crane().slewAngle(), full.slewAngle(), 1e-12);
+    EXPECT_NEAR(red.crane().ropeLength(), full.ropeLength(), 1e-12);
   }
 }
 

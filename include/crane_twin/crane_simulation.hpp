@@ -39,6 +39,8 @@ class CraneSimulation final : public Simulation {
   }
   int ropeNodes() const override { return rope_->nodes(); }
   Eigen::Vector3d ropeNode(int j) const override { return AncfRope::nodePosition(state_.q, j); }
+  CoupledState fullState() const override { return state_; }
+  const CraneSimulation& crane() const override { return *this; }
   const CraneModel& model() const { return model_; }
   const CoupledState& state() const { return state_; }
   RopeSupport& support() { return *support_; }

@@ -19,7 +19,6 @@ class ReducedCraneSimulation final : public Simulation {
   void initialize() override;
   void step() override;
   void setCommand(const CommandEntry& command) override;
-  const CraneSimulation& drives() const { return full_; }  ///< the drive state
   double time() const override { return solver_->state().t; }
   SeriesValues series() const override;
   void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab, Eigen::Vector3d& jib_tip) const override {
@@ -29,6 +28,8 @@ class ReducedCraneSimulation final : public Simulation {
   }
   int ropeNodes() const override { return full_.ropeNodes(); }
   Eigen::Vector3d ropeNode(int j) const override { return solver_->nodePosition(j); }
+  CoupledState fullState() const override { return solver_->fullState(); }
+  const CraneSimulation& crane() const override { return full_; }
   int subdomains() const override { return solver_->statistics().subdomains; }
   double modeUpdateSeconds() const override { return solver_->statistics().mode_update_seconds; }
   const ReducedOrderSolver& solver() const { return *solver_; }

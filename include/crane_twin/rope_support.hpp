@@ -17,6 +17,8 @@
 
 namespace crane_twin {
 
+class TowerCraneStructure;
+
 class RopeSupport {
  public:
   virtual ~RopeSupport() = default;
@@ -48,6 +50,12 @@ class RopeSupport {
   /// slewing frame [m] (SPEC 3.1 cab_d*, jib_tip_d*); zero for an anchor.
   virtual Eigen::Vector3d cabDisplacement(const Eigen::VectorXd& z) const = 0;
   virtual Eigen::Vector3d jibTipDisplacement(const Eigen::VectorXd& z) const = 0;
+  /// The structure mesh behind the support (nullptr for an anchor without a crane).
+  virtual const TowerCraneStructure* structure() const { return nullptr; }
+  /// Free-DOF displacement u = T z of that mesh, slewing frame [m, rad] (empty without one).
+  virtual Eigen::VectorXd structureDisplacement(const Eigen::VectorXd& /*z*/) const {
+    return Eigen::VectorXd();
+  }
 };
 
 /// A fixed point in the world frame (no coordinates).

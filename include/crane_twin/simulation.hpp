@@ -10,6 +10,8 @@ namespace crane_twin {
 
 struct CraneModel;
 struct CommandEntry;
+struct CoupledState;
+class CraneSimulation;
 
 /// One row of the SPEC 3.1 time series.
 struct SeriesValues {
@@ -59,6 +61,10 @@ class Simulation {
   /// 1.4). Throws std::invalid_argument for a non-finite value and InputError for what is not
   /// built; the state is unchanged then.
   virtual void setCommand(const CommandEntry& command) = 0;
+  /// The state in full rope coordinates (the reduced model expands its own: O(n r)).
+  virtual CoupledState fullState() const = 0;
+  /// The full-order setup behind the run: model, rope, support and drive state.
+  virtual const CraneSimulation& crane() const = 0;
   /// Subdomains started and wall time in rope mode updates (0 for a full-order run).
   virtual int subdomains() const { return 0; }
   virtual double modeUpdateSeconds() const { return 0.0; }

@@ -42,6 +42,11 @@ class StructureSupportBase : public RopeSupport {
   Eigen::Vector3d jibTipDisplacement(const Eigen::VectorXd& z) const override {
     return tip_ * z;
   }
+  const TowerCraneStructure* structure() const override { return &structure_; }
+  /// u = T z (T = Phi or I).
+  Eigen::VectorXd structureDisplacement(const Eigen::VectorXd& z) const override {
+    return modes_.size() > 0 ? Eigen::VectorXd(modes_ * z) : z;
+  }
 
  protected:
   /// Build the rows for coordinates u = T z, T given by `modes` (nullptr: T = I).
@@ -107,9 +112,18 @@ class RigidTrolleySupport final : public FixedAnchor {
  public:
   RigidTrolleySupport(const TowerCraneStructure& s, double trolley_radius, double slew_angle);
   void setPose(double theta, double radius) override;
+  const TowerCraneStructure* structure() const override { return &structure_; }
+  /// Always zero: the structure does not deform.
+  Eigen::VectorXd structureDisplacement(const Eigen::VectorXd&) const override;
 
  private:
   const TowerCraneStructure& structure_;
 };
+
+/// Rotation of the slewing frame about the world z axis by theta [rad].
+Eigen::Matrix3d slewRotation(double theta);
+/// Undeformed trolley point X_p(s) at radius s, slewing frame [m]. Throws std::out_of_range
+/// outside the rail.
+Eigen::Vector3d trolleyPoint(const TowerCraneStructure& s, double radius);
 
 }  // namespace crane_twin

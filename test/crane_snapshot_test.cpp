@@ -1,0 +1,196 @@
+// What the ROS node publishes, checked without ROS: the rope curve sampled from the ANCF shape
+// functions, the crane frames at their deformed positions, the deformed structure segments
+// (crane_snapshot), and the command checks and timeout (command_guard).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "crane_twin/command_guard.hpp"
+#include "crane_twin/crane_simulation.hpp"
+#include "crane_twin/crane_snapshot.hpp"
+#include "crane_twin/reduced_crane_simulation.hpp"
+#include "crane_twin/structure_support.hpp"
+
+using namespace crane_twin;
+
+namespace {
+const std::string kScenes = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/";
+
+CraneModel t8036(std::vector<std::string> sets) {
+  sets.insert(sets.begin(), {"rope.model=full", "rope.elements=20", "time_step=0.01",
+                             "structure.modes=12"});
+  return buildCraneModel(loadScene(kScenes + "t8036_combination1.yaml", sets));
+}
+}  // namespace
+
+TEST(SampleRopeCurve, ReproducesACubicExactlyAndPassesThroughTheNodes) {
+  // Hermite cubics interpolate any cubic space curve exactly from its nodal values and slopes:
+  // r(x) = (x, 0.1 x^2, -0.01 x^3), three elements of 2 m.
+  auto r = [](double x) { return Eigen::Vector3d(x, 0.1 * x * x, -0.01 * x * x * x); };
+  auto rx = [](double x) { return Eigen::Vector3d(1.0, 0.2 * x, -0.03 * x * x); };
+  const double l = 2.0;
+  Eigen::VectorXd q(6 * 4);
+  for (int j = 0; j < 4; ++j) {
+    q.segment<3>(6 * j) = r(j * l);
+    q.segment<3>(6 * j + 3) = rx(j * l);
+  }
+  const auto points = sampleRopeCurve(q, l, 5);
+  ASSERT_EQ(points.size(), 3u * 5u + 1u);
+  for (size_t i = 0; i < points.size(); ++i) {
+    const double x = l * static_cast<double>(i) / 5.0;
+    EXPECT_LT((points[i] - r(x)).norm(), 1e-12) << "sample " << i;
+  }
+  EXPECT_THROW(sampleRopeCurve(q, l, 0), std::invalid_argument);
+}
+
+TEST(CraneSnapshot, FramesSitWhereTheModelPutsThem) {
+  // Slewed by 0.5 rad, modal structure: the trolley frame (slewing frame) turned to the world
+  // is the rope's top node, the hook is the rope's end, and the payload hangs almost straight.
+  CraneSimulation sim(t8036({"slewing.angle=0.5", "initial.swing_deg=2"}));
+  sim.initialize();
+  for (int k = 0; k < 30; ++k) sim.step();
+  const CraneSnapshot s = snapshotOf(sim);
+  ASSERT_TRUE(s.has_crane);
+  EXPECT_NEAR(s.slew_angle, 0.5, 1e-15);
+  const Eigen::Vector3d x_axis = s.slewing.orientation * Eigen::Vector3d::UnitX();
+  EXPECT_NEAR(x_axis.x(), std::cos(0.5), 1e-12);
+  EXPECT_NEAR(x_axis.y(), std::sin(0.5), 1e-12);
+  const Eigen::Vector3d top = sim.ropeNode(0);
+  EXPECT_LT((s.slewing.orientation * s.trolley.position - top).norm(), 1e-9);
+  // The trolley frame in the slewing frame: the rail point at radius 80 m, moved by the jib's
+  // deflection, which is no larger than the jib tip's.
+  const Eigen::Vector3d rail = trolleyPoint(*sim.support().structure(), 80.0);
+  EXPECT_NEAR(rail.x(), 80.0, 1e-9);
+  EXPECT_LE((s.trolley.position - rail).norm(), s.series.jib_tip.norm());
+  EXPECT_GT((s.trolley.position - rail).norm(), 0.1);  // the soft structure does deflect
+  EXPECT_LT((s.hook.position - sim.ropeNode(sim.ropeNodes() - 1)).norm(), 1e-12);
+  EXPECT_LT((s.payload.position - s.series.payload).norm(), 1e-12);
+  // Hook z axis along the rope's upward tangent: within a few degrees of the chord.
+  const Eigen::Vector3d chord = (top - s.hook.position).normalized();
+  EXPECT_GT((s.hook.orientation * Eigen::Vector3d::UnitZ()).dot(chord), std::cos(0.1));
+  // The rope curve starts at the top node and ends at the hook.
+  ASSERT_EQ(s.rope_curve.size(), 20u * 4u + 1u);
+  EXPECT_LT((s.rope_curve.front() - top).norm(), 1e-12);
+  EXPECT_LT((s.rope_curve.back() - s.hook.position).norm(), 1e-12);
+  // Drives at rest: joint values are the scene's.
+  EXPECT_NEAR(s.trolley_radius, 80.0, 1e-12);
+  EXPECT_NEAR(s.rope_length, 60.0, 1e-12);
+  EXPECT_EQ(s.slew_rate, 0.0);
+}
+
+TEST(CraneSnapshot, StructureSegmentsScaleTheDeformation) {
+  CraneSimulation sim(t8036({"initial.swing_deg=0"}));
+  sim.initialize();
+  for (int k = 0; k < 5; ++k) sim.step();
+  SnapshotOptions undeformed, true_scale, doubled;
+  undeformed.displacement_scale = 0.0;
+  doubled.displacement_scale = 2.0;
+  const auto s0 = snapshotOf(sim, undeformed), s1 = snapshotOf(sim, true_scale),
+             s2 = snapshotOf(sim, doubled);
+  const TowerCraneStructure& st = *sim.support().structure();
+  ASSERT_EQ(s1.structure_segments.size(), 2 * st.members.size());
+  double moved = 0.0;
+  for (size_t i = 0; i < s1.structure_segments.size(); ++i) {
+    const Eigen::Vector3d d1 = s1.structure_segments[i] - s0.structure_segments[i];
+    const Eigen::Vector3d d2 = s2.structure_segments[i] - s0.structure_segments[i];
+    EXPECT_LT((d2 - 2.0 * d1).norm(), 1e-9);
+    moved = std::max(moved, d1.norm());
+  }
+  // Undeformed segments are the mesh (slewing angle 0).
+  EXPECT_LT((s0.structure_segments[0] - st.nodes[st.members[0].node1]).norm(), 1e-12);
+  // The 3.6 t load bends the jib: the deformed jib tip matches the series' jib-tip
+  // displacement, and the largest segment motion is at least that.
+  EXPECT_LT(s1.series.jib_tip.z(), -0.5);
+  Eigen::Vector3d tip = Eigen::Vector3d::Zero();
+  for (size_t m = 0; m < st.members.size(); ++m)
+    for (int end = 0; end < 2; ++end) {
+      const int n = end ? st.members[m].node2 : st.members[m].node1;
+      for (int t : st.jib_tip_nodes)
+        if (n == t) tip = s1.structure_segments[2 * m + end] - st.nodes[n];
+    }
+  EXPECT_NEAR(tip.z(), s1.series.jib_tip.z(), 0.05);
+  EXPECT_GE(moved, std::abs(s1.series.jib_tip.z()) - 1e-9);
+  SnapshotOptions bad;
+  bad.displacement_scale = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(snapshotOf(sim, bad), std::invalid_argument);
+}
+
+TEST(CraneSnapshot, ReducedModelSnapshotEqualsItsExpandedState) {
+  ReducedCraneSimulation sim(t8036({"rope.model=reduced", "rope.mode_count=6"}));
+  sim.initialize();
+  for (int k = 0; k < 20; ++k) sim.step();
+  const CraneSnapshot s = snapshotOf(sim);
+  EXPECT_LT((s.hook.position - sim.ropeNode(sim.ropeNodes() - 1)).norm(), 1e-12);
+  EXPECT_LT((s.rope_curve.front() - sim.ropeNode(0)).norm(), 1e-12);
+}
+
+TEST(CraneSnapshot, AnchoredRopeHasNoStructure) {
+  CraneSimulation sim(buildCraneModel(loadScene(kScenes + "rope_pendulum_chrono.yaml",
+                                                {"rope.elements=10", "time_step=0.01"})));
+  sim.initialize();
+  const CraneSnapshot s = snapshotOf(sim);
+  EXPECT_FALSE(s.has_crane);
+  EXPECT_TRUE(s.structure_segments.empty());
+  EXPECT_LT((s.trolley.position - sim.ropeNode(0)).norm(), 1e-12);
+}
+
+// ---- command_guard -----------------------------------------------------------------------
+
+TEST(CheckCommand, RejectsNonFiniteAndAbsurdRatesNamingTheField) {
+  const Scene scene = loadScene(kScenes + "t8036_combination1.yaml");
+  const double vmax = scene.crane->trolley.max_speed;
+  CommandEntry c;
+  c.trolley_speed = std::numeric_limits<double>::quiet_NaN();
+  CommandVerdict v = checkCommand(scene, c);
+  EXPECT_FALSE(v.accepted);
+  EXPECT_NE(v.reason.find("trolley_speed"), std::string::npos) << v.reason;
+  c = CommandEntry{};
+  c.slew_rate = std::numeric_limits<double>::infinity();
+  v = checkCommand(scene, c);
+  EXPECT_FALSE(v.accepted);
+  EXPECT_NE(v.reason.find("slew_rate"), std::string::npos) << v.reason;
+  c = CommandEntry{};
+  c.hoist_speed = 1e9;
+  v = checkCommand(scene, c);
+  EXPECT_FALSE(v.accepted);
+  EXPECT_NE(v.reason.find("hoist_speed"), std::string::npos) << v.reason;
+  // Just above the limit: accepted, flagged (the drive limits it).
+  c = CommandEntry{};
+  c.trolley_speed = -1.5 * vmax;
+  v = checkCommand(scene, c);
+  EXPECT_TRUE(v.accepted);
+  EXPECT_TRUE(v.over_limit);
+  EXPECT_NE(v.reason.find("trolley_speed"), std::string::npos) << v.reason;
+  c.trolley_speed = 0.5 * vmax;
+  v = checkCommand(scene, c);
+  EXPECT_TRUE(v.accepted);
+  EXPECT_FALSE(v.over_limit);
+  EXPECT_TRUE(v.reason.empty());
+}
+
+TEST(CheckCommand, NoCraneAcceptsOnlyRest) {
+  const Scene scene = loadScene(kScenes + "rope_pendulum_chrono.yaml");
+  EXPECT_TRUE(checkCommand(scene, CommandEntry{}).accepted);
+  CommandEntry c;
+  c.slew_rate = 0.01;
+  const CommandVerdict v = checkCommand(scene, c);
+  EXPECT_FALSE(v.accepted);
+  EXPECT_NE(v.reason.find("no crane"), std::string::npos) << v.reason;
+}
+
+TEST(CommandWatchdog, ExpiresOnceAfterTheTimeout) {
+  CommandWatchdog w(0.5);
+  EXPECT_FALSE(w.expired(10.0));  // nothing received yet
+  w.received(1.0);
+  EXPECT_FALSE(w.expired(1.5));
+  EXPECT_TRUE(w.expired(1.5001));
+  EXPECT_FALSE(w.expired(2.0));  // once
+  w.received(3.0);
+  EXPECT_TRUE(w.expired(3.6));
+  CommandWatchdog never(0.0);
+  never.received(0.0);
+  EXPECT_FALSE(never.expired(1e6));
+  EXPECT_THROW(CommandWatchdog(-1.0), std::invalid_argument);
+  EXPECT_THROW(CommandWatchdog(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+}
