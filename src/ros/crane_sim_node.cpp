@@ -1,0 +1,400 @@
+#include "crane_sim_node.hpp"
+
+#include <diagnostic_msgs/DiagnosticArray.h>
+#include <rosbag/bag.h>
+#include <rosbag/view.h>
+#include <rosgraph_msgs/Clock.h>
+#include <sensor_msgs/JointState.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "crane_twin/config_reader.hpp"
+#include "crane_twin/crane_simulation.hpp"
+#include "crane_twin/full_order_solver.hpp"
+#include "ros_messages.hpp"
+
+namespace crane_twin {
+
+namespace {
+
+// A parameter that is present must have the right type: a silently ignored typo is worse
+// than a refusal.
+template <typename T>
+void optionalParam(const ros::NodeHandle& pnh, const std::string& name, T& value,
+                   const char* type) {
+  if (!pnh.hasParam(name)) return;
+  if (!pnh.getParam(name, value)) {
+    throw InputError("parameter '" + pnh.resolveName(name) + "' must be " + type);
+  }
+}
+
+void requireFinite(const std::string& name, double v, double min, bool strict) {
+  if (!std::isfinite(v) || v < min || (strict && v == min)) {
+    std::ostringstream s;
+    s << "parameter '~" << name << "' = " << v << " must be a finite number "
+      << (strict ? "> " : ">= ") << min;
+    throw InputError(s.str());
+  }
+}
+
+CommandEntry entryOf(const CraneCommand& m) {
+  CommandEntry c;
+  c.slew_rate = m.slew_rate;
+  c.trolley_speed = m.trolley_speed;
+  c.hoist_speed = m.hoist_speed;
+  return c;
+}
+
+}  // namespace
+
+NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
+  NodeSettings s;
+  if (!pnh.getParam("scene", s.scene) || s.scene.empty()) {
+    throw InputError("parameter '" + pnh.resolveName("scene") +
+                     "' (path of a scene file) is required and must be a string");
+  }
+  // ~overrides: a list of "key=value" strings, or one such string.
+  std::string single;
+  if (pnh.hasParam("overrides") && pnh.getParam("overrides", single)) {
+    s.overrides = {single};
+  } else {
+    optionalParam(pnh, "overrides", s.overrides, "a list of strings key=value");
+  }
+  optionalParam(pnh, "real_time_factor", s.real_time_factor, "a number");
+  optionalParam(pnh, "publish_rate", s.publish_rate, "a number");
+  optionalParam(pnh, "command_timeout", s.command_timeout, "a number");
+  optionalParam(pnh, "publish_clock", s.publish_clock, "true or false");
+  optionalParam(pnh, "duration", s.duration, "a number");
+  optionalParam(pnh, "shutdown_at_end", s.shutdown_at_end, "true or false");
+  optionalParam(pnh, "command_bag", s.command_bag, "a string");
+  optionalParam(pnh, "displacement_scale", s.snapshot.displacement_scale, "a number");
+  optionalParam(pnh, "rope_samples_per_element", s.snapshot.samples_per_element, "an integer");
+  requireFinite("real_time_factor", s.real_time_factor, 0.0, false);
+  requireFinite("publish_rate", s.publish_rate, 0.0, true);
+  requireFinite("command_timeout", s.command_timeout, 0.0, false);
+  requireFinite("displacement_scale", s.snapshot.displacement_scale, 0.0, false);
+  if (!std::isfinite(s.duration)) throw InputError("parameter '~duration' must be finite");
+  if (s.snapshot.samples_per_element < 1 || s.snapshot.samples_per_element > 64) {
+    throw InputError("parameter '~rope_samples_per_element' must be in 1..64");
+  }
+  if (s.real_time_factor == 0.0) s.publish_clock = true;  // SPEC 3.2: 0 drives /clock
+  return s;
+}
+
+CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings settings)
+    : nh_(nh),
+      pnh_(pnh),
+      settings_(std::move(settings)),
+      model_(buildCraneModel(loadScene(settings_.scene, settings_.overrides))),
+      watchdog_(settings_.command_timeout) {
+  if (settings_.duration < 0.0) settings_.duration = model_.scene.duration;
+  loadReplay();
+  resetSimulation();
+  joint_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 10);
+  state_pub_ = nh_.advertise<CraneState>("crane/state", 50);
+  marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("crane/rope", 5);
+  applied_pub_ = nh_.advertise<CraneCommand>("crane/command_applied", 50, true);
+  diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 5);
+  if (settings_.publish_clock) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  command_sub_ = nh_.subscribe("crane/command", 20, &CraneSimNode::onCommand, this);
+  reset_srv_ = pnh_.advertiseService("reset", &CraneSimNode::onReset, this);
+  pause_srv_ = pnh_.advertiseService("pause", &CraneSimNode::onPause, this);
+  ROS_INFO("crane_sim_node: scene %s, rope model %s, %d rope elements, time step %g s, "
+           "real_time_factor %g%s%s",
+           settings_.scene.c_str(), model_.scene.rope.model.c_str(), model_.scene.rope.elements,
+           model_.scene.time_step, settings_.real_time_factor,
+           settings_.publish_clock ? ", publishing /clock" : "",
+           settings_.command_bag.empty() ? "" : ", replaying commands from a bag");
+}
+
+// Commands the recorded run applied, by simulated time (crane/command_applied stamps).
+void CraneSimNode::loadReplay() {
+  replay_all_.clear();
+  if (settings_.command_bag.empty()) return;
+  try {
+    rosbag::Bag bag(settings_.command_bag, rosbag::bagmode::Read);
+    rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{
+                               "crane/command_applied", "/crane/command_applied"}));
+    for (const rosbag::MessageInstance& m : view) {
+      const CraneCommand::ConstPtr c = m.instantiate<CraneCommand>();
+      if (c) replay_all_.push_back({c->header.stamp.toSec(), entryOf(*c)});
+    }
+  } catch (const rosbag::BagException& e) {
+    throw InputError("parameter '~command_bag' '" + settings_.command_bag + "': " + e.what());
+  }
+  if (replay_all_.empty()) {
+    throw InputError("parameter '~command_bag' '" + settings_.command_bag +
+                     "': no crane_twin/CraneCommand on /crane/command_applied");
+  }
+  std::stable_sort(replay_all_.begin(), replay_all_.end(),
+                   [](const Replayed& a, const Replayed& b) { return a.t < b.t; });
+  for (const auto& r : replay_all_) {
+    const CommandVerdict v = checkCommand(model_.scene, r.command);
+    if (!v.accepted) {
+      throw InputError("parameter '~command_bag' '" + settings_.command_bag +
+                       "': recorded command at t = " + std::to_string(r.t) + " s: " + v.reason);
+    }
+  }
+}
+
+void CraneSimNode::resetSimulation() {
+  sim_ = makeSimulation(model_);
+  sim_->initialize();
+  replay_.assign(replay_all_.begin(), replay_all_.end());
+  watchdog_ = CommandWatchdog(settings_.command_timeout);
+  finished_ = failed_ = false;
+  failure_.clear();
+  stamp_origin_ = settings_.publish_clock ? ros::Time(0) : ros::Time::now();
+  next_publish_ = sim_->time();
+  last_publish_sim_ = sim_->time();
+  last_publish_wall_ = ros::WallTime::now();
+  step_seconds_ = 0.0;
+  steps_since_publish_ = 0;
+}
+
+ros::Time CraneSimNode::stamp(double t) const {
+  return stamp_origin_ + ros::Duration(t);
+}
+
+void CraneSimNode::warnThrottled(const std::string& what) {
+  const ros::WallTime now = ros::WallTime::now();
+  if ((now - last_warn_wall_).toSec() < 2.0) return;
+  last_warn_wall_ = now;
+  ROS_WARN("crane_sim_node: %s (%ld commands rejected so far)", what.c_str(), rejected_);
+}
+
+// Commands act from the next step on; each applied command is republished with its simulated
+// time on crane/command_applied, which is what replay feeds back.
+void CraneSimNode::apply(const CommandEntry& c, const char* source) {
+  sim_->setCommand(c);
+  CraneCommand m;
+  m.header.stamp = ros::Time(sim_->time());
+  m.header.frame_id = source;
+  m.slew_rate = c.slew_rate;
+  m.trolley_speed = c.trolley_speed;
+  m.hoist_speed = c.hoist_speed;
+  applied_pub_.publish(m);
+}
+
+void CraneSimNode::onCommand(const CraneCommand::ConstPtr& msg) {
+  if (!settings_.command_bag.empty()) {
+    ++rejected_;
+    warnThrottled("replaying a bag: live command on crane/command ignored");
+    return;
+  }
+  const CommandEntry c = entryOf(*msg);
+  const CommandVerdict v = checkCommand(model_.scene, c);
+  if (!v.accepted) {
+    ++rejected_;
+    warnThrottled("command rejected: " + v.reason);
+    return;
+  }
+  if (failed_) {
+    ++rejected_;
+    warnThrottled("command ignored: the simulation stopped (" + failure_ + "); call ~reset");
+    return;
+  }
+  try {
+    apply(c, "operator");
+  } catch (const std::exception& e) {  // InputError: not built for this model
+    ++rejected_;
+    warnThrottled(std::string("command rejected: ") + e.what());
+    return;
+  }
+  if (v.over_limit) warnThrottled("command above a speed limit: " + v.reason);
+  watchdog_.received(sim_->time());
+}
+
+bool CraneSimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  try {
+    resetSimulation();
+    res.success = true;
+    res.message = "simulation reset to t = 0";
+  } catch (const std::exception& e) {
+    failed_ = true;
+    failure_ = e.what();
+    res.success = false;
+    res.message = std::string("reset failed: ") + e.what();
+  }
+  publish();
+  next_publish_ = sim_->time() + 1.0 / settings_.publish_rate;
+  return true;
+}
+
+bool CraneSimNode::onPause(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {
+  paused_ = req.data;
+  last_publish_wall_ = ros::WallTime::now();
+  res.success = true;
+  res.message = paused_ ? "paused" : "running";
+  return true;
+}
+
+void CraneSimNode::applyDueCommands() {
+  const double t = sim_->time(), half = 0.5 * model_.scene.time_step;
+  while (!replay_.empty() && replay_.front().t <= t + half) {
+    apply(replay_.front().command, "replay");
+    replay_.pop_front();
+  }
+  if (settings_.command_bag.empty() && watchdog_.expired(t)) {
+    apply(CommandEntry{}, "timeout");
+    warnThrottled("no command for " + std::to_string(settings_.command_timeout) +
+                  " s: drives ramp to rest");
+  }
+}
+
+bool CraneSimNode::stepOnce() {
+  applyDueCommands();
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    sim_->step();
+  } catch (const std::exception& e) {  // NumericalFailure, or anything the model refuses
+    failed_ = true;
+    std::ostringstream s;
+    s << "t = " << sim_->time() << " s: " << e.what();
+    failure_ = s.str();
+    ROS_ERROR("crane_sim_node: simulation stopped at %s; call ~reset to start again",
+              failure_.c_str());
+    return false;
+  }
+  step_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  ++steps_since_publish_;
+  ++steps_;
+  return true;
+}
+
+void CraneSimNode::publish() {
+  const double t = sim_->time();
+  const ros::Time st = stamp(t);
+  const ros::WallTime now = ros::WallTime::now();
+  if (steps_since_publish_ > 0) {
+    last_step_cost_ = step_seconds_ / static_cast<double>(steps_since_publish_);
+    const double wall = (now - last_publish_wall_).toSec();
+    last_rtf_ = wall > 0.0 ? (t - last_publish_sim_) / wall : 0.0;
+  }
+  step_seconds_ = 0.0;
+  steps_since_publish_ = 0;
+  last_publish_sim_ = t;
+  last_publish_wall_ = now;
+
+  const CraneSnapshot s = snapshotOf(*sim_, settings_.snapshot);
+  warnings_seen_ |= s.series.warnings;
+  if (settings_.publish_clock) {
+    rosgraph_msgs::Clock c;
+    c.clock = st;
+    clock_pub_.publish(c);
+  }
+  joint_pub_.publish(toJointState(s, st));
+  tf_.sendTransform(toTransforms(s, st));
+  marker_pub_.publish(toMarkers(s, st, 1.5));
+  state_pub_.publish(toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model));
+}
+
+void CraneSimNode::publishDiagnostics() {
+  diagnostic_msgs::DiagnosticArray a;
+  a.header.stamp = stamp(sim_->time());
+  diagnostic_msgs::DiagnosticStatus d;
+  d.name = "crane_sim_node: simulation";
+  d.hardware_id = model_.scene.file;
+  const bool slow = settings_.real_time_factor > 0.0 && !paused_ && !finished_ &&
+                    last_rtf_ < 0.9 * settings_.real_time_factor;
+  if (failed_) {
+    d.level = diagnostic_msgs::DiagnosticStatus::ERROR;
+    d.message = "stopped: " + failure_;
+  } else if (slow) {
+    d.level = diagnostic_msgs::DiagnosticStatus::WARN;
+    d.message = "behind the requested real-time factor";
+  } else {
+    d.level = diagnostic_msgs::DiagnosticStatus::OK;
+    d.message = paused_ ? "paused" : finished_ ? "end of scene reached" : "running";
+  }
+  auto kv = [&d](const std::string& k, const std::string& v) {
+    diagnostic_msgs::KeyValue x;
+    x.key = k;
+    x.value = v;
+    d.values.push_back(x);
+  };
+  auto num = [&kv](const std::string& k, double v) {
+    std::ostringstream s;
+    s << v;
+    kv(k, s.str());
+  };
+  num("sim_time_s", sim_->time());
+  num("real_time_factor", last_rtf_);
+  num("requested_real_time_factor", settings_.real_time_factor);
+  num("step_cost_s", last_step_cost_);
+  num("steps", static_cast<double>(steps_));
+  num("subdomains", sim_->subdomains());
+  num("mode_updates_s", sim_->modeUpdateSeconds());
+  num("rejected_commands", static_cast<double>(rejected_));
+  num("pacing_overruns", static_cast<double>(overruns_));
+  num("warnings_seen", warnings_seen_);
+  kv("rope_model", model_.scene.rope.model);
+  a.status.push_back(d);
+  diag_pub_.publish(a);
+}
+
+// Pacing: with real_time_factor f > 0, simulated time follows f x wall time from an anchor;
+// a lag of more than 0.25 s re-anchors (counted as an overrun) instead of racing to catch up.
+// With f = 0 the node steps from one publication to the next as fast as it can.
+void CraneSimNode::run() {
+  const double dt = model_.scene.time_step, period = 1.0 / settings_.publish_rate;
+  publish();
+  next_publish_ = sim_->time() + period;
+  ros::WallTime anchor_wall = ros::WallTime::now();
+  double anchor_sim = sim_->time();
+  bool was_running = false;
+  while (ros::ok()) {
+    ros::spinOnce();
+    const ros::WallTime now = ros::WallTime::now();
+    if ((now - last_diag_wall_).toSec() >= 1.0) {
+      last_diag_wall_ = now;
+      publishDiagnostics();
+    }
+    const bool running = !paused_ && !finished_ && !failed_;
+    if (!running) {
+      was_running = false;
+      if (finished_ && settings_.shutdown_at_end) break;
+      ros::WallDuration(std::min(period, 0.05)).sleep();
+      continue;
+    }
+    if (!was_running) {  // (re)start pacing after a pause or reset
+      anchor_wall = now;
+      anchor_sim = sim_->time();
+      was_running = true;
+    }
+    double target = next_publish_;
+    if (settings_.real_time_factor > 0.0) {
+      const double paced = anchor_sim + settings_.real_time_factor * (now - anchor_wall).toSec();
+      if (paced - sim_->time() > 0.25 * settings_.real_time_factor + period) {
+        ++overruns_;
+        anchor_wall = now;
+        anchor_sim = sim_->time();
+      }
+      target = std::min(target, paced);
+      if (sim_->time() + 0.5 * dt > target) {
+        const double wait = (std::min(next_publish_, sim_->time() + dt) - paced) /
+                            settings_.real_time_factor;
+        ros::WallDuration(std::clamp(wait, 1e-4, 0.01)).sleep();
+        continue;
+      }
+    }
+    while (sim_->time() + 0.5 * dt <= target) {
+      if (!stepOnce()) break;
+      if (settings_.duration > 0.0 && sim_->time() >= settings_.duration - 0.5 * dt) {
+        finished_ = true;
+        ROS_INFO("crane_sim_node: end of scene at t = %g s", sim_->time());
+        break;
+      }
+    }
+    if (sim_->time() + 0.5 * dt > next_publish_ || finished_ || failed_) {
+      publish();
+      while (next_publish_ <= sim_->time() + 0.5 * dt) next_publish_ += period;
+    }
+  }
+  publishDiagnostics();
+}
+
+}  // namespace crane_twin

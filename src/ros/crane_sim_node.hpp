@@ -1,0 +1,95 @@
+// crane_sim_node (SPEC 3.2): a thin ROS 1 adapter over the ROS-free simulation. It owns one
+// Simulation, paces it (real_time_factor), feeds it operator commands (checked by
+// command_guard, timed out by CommandWatchdog, or replayed from a bag), and publishes what
+// snapshotOf() computes. Nothing here is physics.
+#pragma once
+
+#include <ros/ros.h>
+#include <std_srvs/SetBool.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "crane_twin/CraneCommand.h"
+#include "crane_twin/command_guard.hpp"
+#include "crane_twin/crane_model.hpp"
+#include "crane_twin/crane_snapshot.hpp"
+#include "crane_twin/simulation.hpp"
+
+namespace crane_twin {
+
+/// Parameters of the node (private namespace), validated at start-up.
+struct NodeSettings {
+  std::string scene;
+  std::vector<std::string> overrides;  ///< ~overrides: "key=value" like crane_sim's --set
+  double real_time_factor = 1.0;       ///< 0: as fast as possible (drives /clock)
+  double publish_rate = 30.0;          ///< Hz of simulated time
+  double command_timeout = 0.5;        ///< s of simulated time, 0: never
+  bool publish_clock = false;          ///< forced on when real_time_factor is 0
+  double duration = -1.0;              ///< s; < 0: the scene's; 0: run until shut down
+  bool shutdown_at_end = false;
+  std::string command_bag;             ///< replay crane/command_applied from this bag
+  SnapshotOptions snapshot;
+};
+
+/// Read and check the private parameters. Throws InputError naming the parameter.
+NodeSettings readNodeSettings(const ros::NodeHandle& pnh);
+
+class CraneSimNode {
+ public:
+  /// Builds the model and the simulation. Throws InputError (bad scene or parameter).
+  CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings settings);
+  /// Spin, step and publish until ROS shuts down (or the end with shutdown_at_end).
+  void run();
+
+ private:
+  struct Replayed {
+    double t;
+    CommandEntry command;
+  };
+  ros::NodeHandle nh_, pnh_;
+  NodeSettings settings_;
+  CraneModel model_;
+  std::unique_ptr<Simulation> sim_;
+  CommandWatchdog watchdog_;
+  std::deque<Replayed> replay_;  ///< commands still to apply, by simulated time
+  std::vector<Replayed> replay_all_;
+
+  ros::Subscriber command_sub_;
+  ros::Publisher joint_pub_, state_pub_, marker_pub_, clock_pub_, diag_pub_, applied_pub_;
+  ros::ServiceServer reset_srv_, pause_srv_;
+  tf2_ros::TransformBroadcaster tf_;
+
+  bool paused_ = false, finished_ = false, failed_ = false;
+  std::string failure_;
+  ros::Time stamp_origin_;
+  double next_publish_ = 0.0;
+  // Cost accounting since the last published state.
+  double step_seconds_ = 0.0;
+  long steps_since_publish_ = 0;
+  double last_publish_sim_ = 0.0;
+  ros::WallTime last_publish_wall_;
+  double last_step_cost_ = 0.0, last_rtf_ = 0.0;
+  long steps_ = 0, rejected_ = 0, overruns_ = 0;
+  int warnings_seen_ = 0;
+  ros::WallTime last_warn_wall_, last_diag_wall_;
+
+  void loadReplay();
+  void resetSimulation();
+  bool stepOnce();
+  void applyDueCommands();
+  void apply(const CommandEntry& c, const char* source);
+  void publish();
+  void publishDiagnostics();
+  ros::Time stamp(double t) const;
+  void warnThrottled(const std::string& what);
+  void onCommand(const CraneCommand::ConstPtr& msg);
+  bool onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
+  bool onPause(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
+};
+
+}  // namespace crane_twin

@@ -1,0 +1,136 @@
+#include "ros_messages.hpp"
+
+namespace crane_twin {
+
+const char* const kJointNames[3] = {"slew", "trolley", "hoist"};
+
+namespace {
+
+geometry_msgs::Point point(const Eigen::Vector3d& p) {
+  geometry_msgs::Point m;
+  m.x = p.x();
+  m.y = p.y();
+  m.z = p.z();
+  return m;
+}
+
+geometry_msgs::Vector3 vector(const Eigen::Vector3d& p) {
+  geometry_msgs::Vector3 m;
+  m.x = p.x();
+  m.y = p.y();
+  m.z = p.z();
+  return m;
+}
+
+geometry_msgs::TransformStamped transform(const std::string& parent, const std::string& child,
+                                          const FramePose& pose, const ros::Time& stamp) {
+  geometry_msgs::TransformStamped t;
+  t.header.stamp = stamp;
+  t.header.frame_id = parent;
+  t.child_frame_id = child;
+  t.transform.translation = vector(pose.position);
+  const Eigen::Quaterniond q = pose.orientation.normalized();
+  t.transform.rotation.x = q.x();
+  t.transform.rotation.y = q.y();
+  t.transform.rotation.z = q.z();
+  t.transform.rotation.w = q.w();
+  return t;
+}
+
+visualization_msgs::Marker marker(const std::string& ns, int type, const ros::Time& stamp) {
+  visualization_msgs::Marker m;
+  m.header.frame_id = "world";
+  m.header.stamp = stamp;
+  m.ns = ns;
+  m.id = 0;
+  m.type = type;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.color.a = 1.0;
+  return m;
+}
+
+}  // namespace
+
+sensor_msgs::JointState toJointState(const CraneSnapshot& s, const ros::Time& stamp) {
+  sensor_msgs::JointState j;
+  j.header.stamp = stamp;
+  j.name.assign(kJointNames, kJointNames + 3);
+  j.position = {s.slew_angle, s.trolley_radius, s.rope_length};
+  j.velocity = {s.slew_rate, s.trolley_speed, s.hoist_speed};
+  j.effort = {0.0, 0.0, s.series.rope_top_tension};
+  return j;
+}
+
+std::vector<geometry_msgs::TransformStamped> toTransforms(const CraneSnapshot& s,
+                                                          const ros::Time& stamp) {
+  return {transform("world", "slewing", s.slewing, stamp),
+          transform("slewing", "jib_tip", s.jib_tip, stamp),
+          transform("slewing", "cab", s.cab, stamp),
+          transform("slewing", "trolley", s.trolley, stamp),
+          transform("world", "hook", s.hook, stamp),
+          transform("world", "payload", s.payload, stamp)};
+}
+
+visualization_msgs::MarkerArray toMarkers(const CraneSnapshot& s, const ros::Time& stamp,
+                                          double payload_diameter) {
+  visualization_msgs::MarkerArray a;
+  auto rope = marker("rope", visualization_msgs::Marker::LINE_STRIP, stamp);
+  rope.scale.x = 0.12;
+  rope.color.r = rope.color.g = rope.color.b = 0.15f;
+  rope.points.reserve(s.rope_curve.size());
+  for (const auto& p : s.rope_curve) rope.points.push_back(point(p));
+  a.markers.push_back(rope);
+
+  auto payload = marker("payload", visualization_msgs::Marker::SPHERE, stamp);
+  payload.pose.position = point(s.payload.position);
+  payload.scale.x = payload.scale.y = payload.scale.z = payload_diameter;
+  payload.color.r = 1.0f;
+  payload.color.g = 0.45f;
+  a.markers.push_back(payload);
+
+  if (!s.structure_segments.empty()) {
+    auto structure = marker("structure", visualization_msgs::Marker::LINE_LIST, stamp);
+    structure.scale.x = 0.08;
+    structure.color.r = 0.95f;
+    structure.color.g = 0.75f;
+    structure.color.b = 0.05f;
+    structure.points.reserve(s.structure_segments.size());
+    for (const auto& p : s.structure_segments) structure.points.push_back(point(p));
+    a.markers.push_back(structure);
+  }
+  return a;
+}
+
+CraneState toStateMessage(const CraneSnapshot& s, const ros::Time& stamp, double step_cost,
+                          double real_time_factor, const std::string& model) {
+  const SeriesValues& v = s.series;
+  CraneState m;
+  m.header.stamp = stamp;
+  m.header.frame_id = "world";
+  m.t = v.t;
+  m.payload = point(v.payload);
+  m.payload_velocity = vector(v.payload_velocity);
+  m.cab_displacement = vector(v.cab);
+  m.jib_tip_displacement = vector(v.jib_tip);
+  m.trolley = point(v.trolley);
+  m.rope_top_tension = v.rope_top_tension;
+  m.rope_length = v.rope_length;
+  m.slew_angle = v.slew_angle;
+  m.trolley_radius = v.trolley_radius;
+  m.slew_rate = s.slew_rate;
+  m.trolley_speed = s.trolley_speed;
+  m.hoist_speed = s.hoist_speed;
+  m.energy = v.energy;
+  m.constraint_error = v.constraint_error;
+  m.subdomains = v.subdomains;
+  m.tension_ratio = v.tension_ratio;
+  m.load_chart_ratio = v.load_chart_ratio;
+  m.warnings = v.warnings;
+  m.step_compute_time = step_cost;
+  m.real_time_factor = real_time_factor;
+  m.model = model;
+  return m;
+}
+
+}  // namespace crane_twin
