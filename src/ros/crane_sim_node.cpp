@@ -69,6 +69,7 @@ NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
   optionalParam(pnh, "publish_clock", s.publish_clock, "true or false");
   optionalParam(pnh, "duration", s.duration, "a number");
   optionalParam(pnh, "shutdown_at_end", s.shutdown_at_end, "true or false");
+  optionalParam(pnh, "start_paused", s.start_paused, "true or false");
   optionalParam(pnh, "command_bag", s.command_bag, "a string");
   optionalParam(pnh, "displacement_scale", s.snapshot.displacement_scale, "a number");
   optionalParam(pnh, "rope_samples_per_element", s.snapshot.samples_per_element, "an integer");
@@ -91,10 +92,11 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
       model_(buildCraneModel(loadScene(settings_.scene, settings_.overrides))),
       watchdog_(settings_.command_timeout) {
   if (settings_.duration < 0.0) settings_.duration = model_.scene.duration;
+  paused_ = settings_.start_paused;
   loadReplay();
   resetSimulation();
   joint_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 10);
-  state_pub_ = nh_.advertise<CraneState>("crane/state", 50);
+  state_pub_ = nh_.advertise<CraneState>("crane/state", 1000);  // rtf 0: bursts
   marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("crane/rope", 5);
   applied_pub_ = nh_.advertise<CraneCommand>("crane/command_applied", 50, true);
   diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 5);

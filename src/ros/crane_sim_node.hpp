@@ -32,6 +32,7 @@ struct NodeSettings {
   bool publish_clock = false;          ///< forced on when real_time_factor is 0
   double duration = -1.0;              ///< s; < 0: the scene's; 0: run until shut down
   bool shutdown_at_end = false;
+  bool start_paused = false;           ///< wait for ~pause false before the first step
   std::string command_bag;             ///< replay crane/command_applied from this bag
   SnapshotOptions snapshot;
 };
