@@ -8,6 +8,10 @@ PKGS=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev libboost-dev
   catkin ros-core-dev ros-message-generation ros-std-msgs ros-sensor-msgs
   ros-geometry-msgs ros-visualization-msgs libtf2-ros-dev librostest-dev python3-rostest
+  ros-std-srvs ros-diagnostic-msgs ros-rosgraph-msgs ros-tf2-msgs librosbag-dev python3-rosbag
+  python3-rospy python3-roslaunch python3-rostopic ros-robot-state-publisher rviz tf2-tools
+  python3-tf2-ros
+  xvfb x11-utils imagemagick
   python3-matplotlib
 )
 missing=()

@@ -8,6 +8,7 @@ Profile (default): 0-2 s rest; 2-8 s trolley in at 0.8 m/s; 8-15 s slew at 0.06 
 """
 import argparse
 import sys
+import time
 
 import rospy
 from std_srvs.srv import SetBool
@@ -36,17 +37,24 @@ def main():
     while pub.get_num_connections() == 0 and not rospy.is_shutdown():
         rospy.sleep(0.05)
     rospy.ServiceProxy("crane_sim_node/pause", SetBool)(False)
-    rate = rospy.Rate(10)
+    # Wall-clock pacing (the profile itself follows simulated time from crane/state): a
+    # rospy.Rate would wait for /clock forever if use_sim_time were set and no clock came.
+    last_t, last_change = None, time.time()
     while not rospy.is_shutdown():
         t = sim_t[0]
         if t is not None and t >= args.end:
             break
+        if t != last_t:
+            last_t, last_change = t, time.time()
+        elif time.time() - last_change > 30.0:
+            rospy.logerr("operator_profile: no simulated time progress for 30 s; giving up")
+            return 1
         if t is not None:
             c = CraneCommand()
             c.header.stamp = rospy.Time.now()
             c.slew_rate, c.trolley_speed, c.hoist_speed = command_at(t)
             pub.publish(c)
-        rate.sleep()
+        time.sleep(0.1)
     rospy.loginfo("operator_profile: silent from t = %.2f s", sim_t[0] or 0.0)
     return 0
 

@@ -26,8 +26,10 @@ roslaunch crane_twin sim.launch rviz:=false record:=true bag:="$OUT" \
   overrides:="[rope.model=full]" duration:=20 shutdown_at_end:=true start_paused:=true \
   publish_clock:=true &
 LAUNCH=$!
-rosrun crane_twin operator_profile.py
+rosrun crane_twin operator_profile.py &
+OPERATOR=$!
 wait "$LAUNCH" || true
+kill "$OPERATOR" 2>/dev/null || true
 for _ in $(seq 50); do [ -f "$OUT" ] && break; sleep 0.2; done
 [ "$OWN_MASTER" != 0 ] && kill "$OWN_MASTER" 2>/dev/null || true
 rosbag info "$OUT"

@@ -1,0 +1,79 @@
+#!/usr/bin/python3
+"""Turn a crane_sim_node recording into crane_sim's formats.
+
+  bag_to_series.py BAG [--series OUT.csv] [--commands OUT.yaml] [--stats]
+
+--series    crane/state as a SPEC 3.1 time-series CSV (crane_sim compare and plot_series.py
+            read it);
+--commands  crane/command_applied as a scene `commands:` schedule (YAML flow list, simulated
+            times), so `crane_sim run SCENE --set "commands=$(cat OUT.yaml)"` repeats the run;
+--stats     median step cost, real-time factor and the count of states and commands.
+"""
+import argparse
+import statistics
+import sys
+
+import rosbag
+
+COLUMNS = ("t,payload_x,payload_y,payload_z,payload_vx,payload_vy,payload_vz,cab_dx,cab_dy,"
+           "cab_dz,jib_tip_dx,jib_tip_dy,jib_tip_dz,trolley_x,trolley_y,trolley_z,"
+           "rope_top_tension,rope_length,slew_angle,trolley_radius,energy,constraint_error,"
+           "subdomains,tension_ratio,load_chart_ratio,warnings")
+
+
+def row(s):
+    v = lambda p: [p.x, p.y, p.z]  # noqa: E731
+    values = ([s.t] + v(s.payload) + v(s.payload_velocity) + v(s.cab_displacement) +
+              v(s.jib_tip_displacement) + v(s.trolley) +
+              [s.rope_top_tension, s.rope_length, s.slew_angle, s.trolley_radius, s.energy,
+               s.constraint_error, s.subdomains, s.tension_ratio, s.load_chart_ratio,
+               s.warnings])
+    return ",".join(repr(float(x)) if not isinstance(x, int) else str(x) for x in values)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("bag")
+    parser.add_argument("--series")
+    parser.add_argument("--commands")
+    parser.add_argument("--stats", action="store_true")
+    a = parser.parse_args()
+    try:
+        bag = rosbag.Bag(a.bag)
+    except Exception as e:  # rosbag raises several types for a bad file
+        sys.exit("bag_to_series: %s: %s" % (a.bag, e))
+    states, commands = [], []
+    for topic, msg, _ in bag.read_messages(topics=["/crane/state", "/crane/command_applied"]):
+        (states if topic == "/crane/state" else commands).append(msg)
+    bag.close()
+    if not states:
+        sys.exit("bag_to_series: %s holds no /crane/state" % a.bag)
+    states.sort(key=lambda s: s.t)
+    if a.series:
+        with open(a.series, "w") as f:
+            f.write(COLUMNS + "\n")
+            for s in states:
+                f.write(row(s) + "\n")
+    if a.commands:
+        entries = ["{t: %r, slew_rate: %r, trolley_speed: %r, hoist_speed: %r}" %
+                   (c.header.stamp.to_sec(), c.slew_rate, c.trolley_speed, c.hoist_speed)
+                   for c in sorted(commands, key=lambda c: c.header.stamp.to_sec())]
+        with open(a.commands, "w") as f:
+            f.write("[" + ", ".join(entries) + "]\n")
+    if a.stats:
+        cost = [s.step_compute_time for s in states if s.step_compute_time > 0]
+        rtf = [s.real_time_factor for s in states if s.real_time_factor > 0]
+        print("states,%d" % len(states))
+        print("applied_commands,%d" % len(commands))
+        print("sim_s,%g" % (states[-1].t - states[0].t))
+        print("model,%s" % states[0].model)
+        if cost:
+            print("median_step_cost_s,%.3g" % statistics.median(cost))
+        if rtf:
+            print("median_real_time_factor,%.3g" % statistics.median(rtf))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
