@@ -20,7 +20,7 @@ namespace {
 std::mutex mutex;
 std::map<int64_t, crane_twin::CraneState> live;  // by stamp [ns]
 std::string reference_bag;
-double payload_bound = 0.15;
+double payload_bound = 0.0;
 double end_time = 0.0;
 
 double payloadError(const crane_twin::CraneState& a, const crane_twin::CraneState& b) {
@@ -91,8 +91,13 @@ int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "replay_compare_test");
   ros::NodeHandle nh, pnh("~");
-  pnh.param("reference_bag", reference_bag, reference_bag);
-  pnh.param("payload_bound", payload_bound, payload_bound);
+  // Both parameters are required and typed: a bound silently left at a default would make the
+  // test pass for the wrong reason.
+  if (!pnh.getParam("reference_bag", reference_bag) || !pnh.getParam("payload_bound", payload_bound)) {
+    std::fprintf(stderr, "replay_compare_test: ~reference_bag (string) and ~payload_bound (double) "
+                         "are required\n");
+    return 2;
+  }
   ros::Subscriber sub = crane_twin_test::subscribe<crane_twin::CraneState>(nh, "crane/state", 1000, [](const crane_twin::CraneState::ConstPtr& m) {
         std::lock_guard<std::mutex> l(mutex);
         live[m->header.stamp.toNSec()] = *m;
