@@ -248,15 +248,49 @@ void FullOrderSolver::initializeAccelerations(CoupledState& s) {
   s.za = s.zdd;
 }
 
+// One step of size h_. When Newton fails (a slack rope snapping taut, say), the step is
+// retried as two half steps, recursively down to h_ / 2^kMaxHalvings: the generalized-alpha
+// variable a carries over between step sizes (Arnold & Bruls 2007), and 2^k half steps end
+// exactly at t + h_.
 void FullOrderSolver::step(CoupledState& s) {
+  std::string why;
+  if (tryStep(s, h_, why)) return;
+  const CoupledState start = s;
+  if (!stepHalved(s, h_, 1, why)) {
+    s = start;
+    throw NumericalFailure(why + " (also with the step halved " + std::to_string(kMaxHalvings) +
+                           " times)");
+  }
+}
+
+bool FullOrderSolver::stepHalved(CoupledState& s, double h, int depth, std::string& why) {
+  const double half = 0.5 * h;
+  for (int k = 0; k < 2; ++k) {
+    const CoupledState start = s;
+    if (tryStep(s, half, why)) {
+      ++halved_steps_;
+      continue;
+    }
+    s = start;
+    if (depth >= kMaxHalvings || !stepHalved(s, half, depth + 1, why)) return false;
+  }
+  return true;
+}
+
+bool FullOrderSolver::tryStep(CoupledState& s, double h, std::string& why) {
   const int n = rope_.dofs(), m = support_.size();
-  const double h = h_, bh2 = ga_.beta * h * h, massWeight = ga_.massWeight();
-  const Eigen::VectorXd qdd0 = s.qdd, a0 = s.a, zdd0 = s.zdd, za0 = s.za;
+  const double bh2 = ga_.beta * h * h, massWeight = ga_.massWeight();
+  const CoupledState start = s;
+  const Eigen::VectorXd& qdd0 = start.qdd;
+  const Eigen::VectorXd& a0 = start.a;
+  const Eigen::VectorXd& zdd0 = start.zdd;
+  const Eigen::VectorXd& za0 = start.za;
   ga_.predict(h, qdd0, a0, s.q, s.v);
   if (m > 0) ga_.predict(h, zdd0, za0, s.z, s.zd);
   const Eigen::Matrix3d G = support_.setIterationWeights(massWeight, ga_.gamma * h, bh2);
   Eigen::VectorXd Q, Azr, rz;
   const SparseMatrix& M = rope_.massMatrix();
+  const std::string at = "t = " + std::to_string(s.t + h) + " s";
   int it = 0;
   for (; it < newton_.max_iterations; ++it) {
     assemble(s.q, massWeight, bh2, G, Q);
@@ -268,7 +302,12 @@ void FullOrderSolver::step(CoupledState& s) {
     }
     const Eigen::Vector3d rc = -(s.q.head<3>() - support_.point(s.z));
     const Eigen::VectorXd rhs = condensedRhs(rq, rz, rc, Azr);
-    factorize("t = " + std::to_string(s.t + h) + " s");
+    ldlt_.factorize(A_);
+    if (ldlt_.info() != Eigen::Success) {
+      why = at + ": singular iteration matrix";
+      s = start;
+      return false;
+    }
     const Eigen::VectorXd dx = ldlt_.solve(rhs);
     const Eigen::VectorXd dq = dx.head(n);
     ga_.correct(h, dq, s.q, s.v, s.qdd);
@@ -281,23 +320,24 @@ void FullOrderSolver::step(CoupledState& s) {
       // effect at the support point bounds the change that matters for the rope.
       dmax = std::max(dmax, support_.pointMotion(dz).cwiseAbs().maxCoeff());
     }
-    if (!s.q.allFinite() || !s.z.allFinite()) {
-      throw NumericalFailure("t = " + std::to_string(s.t + h) + " s: non-finite state");
+    if (!s.q.allFinite() || !s.z.allFinite() || !s.lambda.allFinite()) {
+      why = at + ": non-finite state";
+      s = start;
+      return false;
     }
     if (dmax < newton_.position_tolerance && constraintError(s) < newton_.constraint_tolerance) {
       ++it;
-      break;
-    }
-    if (it + 1 == newton_.max_iterations) {
-      throw NumericalFailure("t = " + std::to_string(s.t + h) +
-                             " s: Newton did not converge in " +
-                             std::to_string(newton_.max_iterations) + " iterations");
+      s.a = ga_.nextA(qdd0, a0, s.qdd);
+      if (m > 0) s.za = ga_.nextA(zdd0, za0, s.zdd);
+      s.t += h;
+      s.newton_iterations = it;
+      return true;
     }
   }
-  s.a = ga_.nextA(qdd0, a0, s.qdd);
-  if (m > 0) s.za = ga_.nextA(zdd0, za0, s.zdd);
-  s.t += h;
-  s.newton_iterations = it;
+  why = at + ": Newton did not converge in " + std::to_string(newton_.max_iterations) +
+        " iterations";
+  s = start;
+  return false;
 }
 
 double mechanicalEnergy(const AncfRope& rope, const RopeSupport& support, const CoupledState& s) {

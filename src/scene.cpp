@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
+#include <random>
 
 #include "crane_twin/config_reader.hpp"
 
@@ -134,8 +136,47 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     c.finish();
     s.commands.push_back(e);
   }
+  if (root.has("random_commands")) {
+    ConfigNode n = root.map("random_commands");
+    if (!s.commands.empty()) n.fail("seed", "random_commands and commands exclude each other");
+    if (!s.crane) n.fail("seed", "random commands need a crane (crane: none has no drives)");
+    RandomCommandSpec r;
+    r.seed = n.integer("seed", std::nullopt, 0, std::numeric_limits<int>::max());
+    r.interval = n.number("interval", std::nullopt, Bounds::positive());
+    r.fraction = n.number("fraction", 1.0, {0.0, 1.0, false, true});
+    r.slew = n.boolean("slew", true);
+    r.trolley = n.boolean("trolley", true);
+    r.hoist = n.boolean("hoist", false);
+    n.finish();
+    s.commands = randomCommandSchedule(*s.crane, r, s.duration);
+  }
   root.finish();
   return s;
+}
+
+// Entries at t = k interval (k = 0, 1, ... while t < duration), each rate uniform in
+// [-fraction v_max, fraction v_max] of its drive (0 for a drive left out). The generator is
+// std::mt19937 with the uniform variate built here from its raw output, so a seed gives the
+// same schedule with every standard library.
+std::vector<CommandEntry> randomCommandSchedule(const CraneDescription& crane,
+                                                const RandomCommandSpec& spec, double duration) {
+  std::mt19937 gen(static_cast<std::mt19937::result_type>(spec.seed));
+  auto uniform = [&gen](double limit) {
+    const double u = static_cast<double>(gen()) / 4294967296.0;  // [0, 1)
+    return limit * (2.0 * u - 1.0);
+  };
+  std::vector<CommandEntry> out;
+  for (long k = 0;; ++k) {
+    CommandEntry e;
+    e.t = static_cast<double>(k) * spec.interval;
+    if (e.t >= duration) break;
+    const double f = spec.fraction;
+    e.slew_rate = spec.slew ? uniform(f * crane.slewing.max_speed) : 0.0;
+    e.trolley_speed = spec.trolley ? uniform(f * crane.trolley.max_speed) : 0.0;
+    e.hoist_speed = spec.hoist ? uniform(f * crane.hoist.max_speed) : 0.0;
+    out.push_back(e);
+  }
+  return out;
 }
 
 }  // namespace crane_twin

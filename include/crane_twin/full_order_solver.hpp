@@ -107,8 +107,13 @@ class FullOrderSolver {
   /// with the constraint's second derivative r_0'' - D z'' = 0.
   void initializeAccelerations(CoupledState& s);
 
-  /// One generalized-alpha step of size h. Throws NumericalFailure.
+  /// One generalized-alpha step of size h; where Newton fails, the step is halved (up to
+  /// kMaxHalvings times). Throws NumericalFailure naming the time and the reason; s is then
+  /// left at the step's start.
   void step(CoupledState& s);
+  static constexpr int kMaxHalvings = 6;
+  /// Half steps taken so far in place of failed steps (0 in a smooth run).
+  long halvedSteps() const { return halved_steps_; }
 
   /// Re-read the rope's mass matrix after AncfRope::setLength (same pattern).
   void refreshMass();
@@ -135,6 +140,11 @@ class FullOrderSolver {
                                const Eigen::Vector3d& rc, Eigen::VectorXd& Azinv_rz) const;
   // Factorise A_; throws NumericalFailure with `what` on failure.
   void factorize(const std::string& what);
+  // One step of size h from s; false (s unchanged, the reason in why) where Newton fails.
+  bool tryStep(CoupledState& s, double h, std::string& why);
+  // Two steps of h / 2, each halved again where it fails, down to depth kMaxHalvings.
+  bool stepHalved(CoupledState& s, double h, int depth, std::string& why);
+  long halved_steps_ = 0;
   const AncfRope& rope_;
   RopeSupport& support_;
   GeneralizedAlpha ga_;

@@ -66,6 +66,18 @@ struct Scene {
   double hookBlockMass() const { return crane ? crane->hook_block_mass : 0.0; }
 };
 
+/// `random_commands:` of a scene (SPEC 6 hard case): a seeded, reproducible schedule.
+struct RandomCommandSpec {
+  int seed = 0;
+  double interval = 1.0;   ///< s between entries
+  double fraction = 1.0;   ///< of each drive's speed limit, (0, 1]
+  bool slew = true, trolley = true, hoist = false;
+};
+
+/// The schedule a RandomCommandSpec stands for over [0, duration).
+std::vector<CommandEntry> randomCommandSchedule(const CraneDescription& crane,
+                                                const RandomCommandSpec& spec, double duration);
+
 /// Load a scene, apply `key.path=value` overrides, validate everything. The crane file named
 /// by `crane:` is looked up as <scene dir>/../cranes/<name>.yaml, or taken as a path when it
 /// ends in .yaml.
