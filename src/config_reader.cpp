@@ -210,7 +210,11 @@ Eigen::Vector3d ConfigNode::vec3(const std::string& key, std::optional<Eigen::Ve
 void ConfigNode::finish() const {
   if (!node_.IsMap()) return;
   for (auto it = node_.begin(); it != node_.end(); ++it) {
-    const std::string k = it->first.as<std::string>();
+    if (!it->first.IsScalar()) {  // e.g. `{a:, [0, 0, 3]}`: a list used as a key
+      throw InputError(file_ + ": " + (path_.empty() ? "the top level" : "key '" + path_ + "'") +
+                       " holds a key that is not a name (a list or map used as a key)");
+    }
+    const std::string k = it->first.Scalar();
     if (!used_.count(k)) {
       throw InputError(file_ + ": key '" + keyPath(k) + "': unknown key");
     }

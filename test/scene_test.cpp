@@ -121,6 +121,13 @@ TEST(Scene, MissingEmptyOrBrokenFilesAreRefused) {
   expectRefused(crane, {"crane=t9999", "anchor=null", "structure.model=modal"}, {crane, "crane", "t9999"});
   const std::string list = writeScene("list.yaml", "- 1\n- 2\n");
   expectRefused(list, {}, {list, "map"});
+  // Found by scripts/fuzz_scene_loader.sh: a stray comma makes a list a key of the flow map,
+  // which escaped as a yaml-cpp conversion error.
+  const std::string listKey = writeScene(
+      "list_key.yaml", "crane: none\nduration: 1\ntime_step: 0.01\n"
+                       "rope: {model: full, length: 10}\n"
+                       "initial: {mode: stress_free, payload_velocity:, [0, 0, 3]}\n");
+  expectRefused(listKey, {}, {listKey, "initial", "not a name"});
 }
 
 TEST(Scene, CrossKeyLimitsAreRefused) {

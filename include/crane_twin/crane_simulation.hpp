@@ -41,6 +41,7 @@ class CraneSimulation final : public Simulation {
   Eigen::Vector3d ropeNode(int j) const override { return AncfRope::nodePosition(state_.q, j); }
   CoupledState fullState() const override { return state_; }
   const CraneSimulation& crane() const override { return *this; }
+  long halvedSteps() const override { return solver_->halvedSteps(); }
   const CraneModel& model() const { return model_; }
   const CoupledState& state() const { return state_; }
   RopeSupport& support() { return *support_; }

@@ -68,6 +68,8 @@ class Simulation {
   /// Subdomains started and wall time in rope mode updates (0 for a full-order run).
   virtual int subdomains() const { return 0; }
   virtual double modeUpdateSeconds() const { return 0.0; }
+  /// Steps taken as halves because Newton failed at the full step (full order only).
+  virtual long halvedSteps() const { return 0; }
 
   /// `t,node,x,y,z` rows for every rope node.
   void writeNodeRows(std::ostream& out) const;

@@ -155,6 +155,10 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   for (const auto& [bit, rows] : warned) {
     std::fprintf(stderr, "warning: %s in %ld output rows\n", ct::warningName(bit), rows);
   }
+  if (sim->halvedSteps() > 0) {
+    std::fprintf(stderr, "note: halved_steps=%ld (steps where Newton failed at the full size)\n",
+                 sim->halvedSteps());
+  }
   const double simS = steps * sc.time_step;
   std::printf("summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=%d mode_updates_s=%.3g\n",
               wall, simS, simS / wall, steps, sim->subdomains(), sim->modeUpdateSeconds());
