@@ -198,4 +198,20 @@ void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12&
   }
 }
 
+void ancfAxialDampingForce(const AncfCableProperties& p, double c, const Vector12& e,
+                           const Vector12& edot, Vector12& Q, Matrix12* C) {
+  const GaussRule& gr = gaussRule(p.gauss_points);
+  Q.setZero();
+  if (C) C->setZero();
+  const double cEA = c * p.axial_stiffness, l = p.length;
+  for (int q = 0; q < gr.x.size(); ++q) {
+    const double w = gr.w(q) * l;
+    const Eigen::Vector4d sx = ancfShapeDx(gr.x(q), l);
+    const Eigen::Vector3d t = combine(sx, e).normalized();
+    const double epsDot = t.dot(combine(sx, edot));
+    addVec(sx, cEA * epsDot * t, w, Q);
+    if (C) addOuter(sx, sx, cEA * t * t.transpose(), w, *C);
+  }
+}
+
 }  // namespace crane_twin

@@ -45,9 +45,6 @@ CraneSimulation::CraneSimulation(const CraneModel& m) : model_(m) {
   if (sc.rope.model == "pendulum") {
     throw InputError(sc.file + ": key 'rope.model': the pendulum rope is not built yet");
   }
-  if (sc.rope.damping != 0.0) {
-    throw InputError(sc.file + ": key 'rope.damping': rope material damping is not built yet");
-  }
   if (sc.slew_inertial_loads) {
     throw InputError(sc.file + ": key 'slewing.inertial_loads': the inertial loads of slewing on the structure are not built yet");
   }
@@ -67,6 +64,7 @@ CraneSimulation::CraneSimulation(const CraneModel& m) : model_(m) {
   support_ = makeRopeSupport(model);
   solver_ = std::make_unique<FullOrderSolver>(*rope_, *support_, GeneralizedAlpha::forScene(sc),
                                               sc.time_step);
+  solver_->setRopeDamping(sc.rope.damping);
 }
 
 CoupledState CraneSimulation::staticState(Eigen::Vector3d* holding_force) {

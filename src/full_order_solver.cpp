@@ -89,7 +89,13 @@ void FullOrderSolver::refreshMass() {
 }
 
 // A = [ massWeight M + stiffWeight K(q)   C_q^T ; C_q  -G ],  C_q = [I3 0 ...].
-void FullOrderSolver::assemble(const Eigen::VectorXd& q, double massWeight, double stiffWeight,
+void FullOrderSolver::setRopeDamping(double c) {
+  if (!std::isfinite(c) || c < 0.0) throw std::invalid_argument("rope damping must be >= 0");
+  rope_damping_ = c;
+}
+
+void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                               double massWeight, double stiffWeight, double dampWeight,
                                const Eigen::Matrix3d& G, Eigen::VectorXd& Q) {
   double* val = A_.valuePtr();
   const int n = rope_.dofs();
@@ -102,9 +108,17 @@ void FullOrderSolver::assemble(const Eigen::VectorXd& q, double massWeight, doub
   for (int k = 0; k < rope_.elements(); ++k, idx += 144) {
     ancfElasticForce(rope_.element(), q.segment<12>(6 * k), Qe, stiffWeight != 0.0 ? &Ke : nullptr);
     Q.segment<12>(6 * k) += Qe;
-    if (stiffWeight == 0.0) continue;
-    const double* ke = Ke.data();
-    for (int e = 0; e < 144; ++e) val[idx[e]] += stiffWeight * ke[e];
+    if (stiffWeight != 0.0) {
+      const double* ke = Ke.data();
+      for (int e = 0; e < 144; ++e) val[idx[e]] += stiffWeight * ke[e];
+    }
+    if (rope_damping_ == 0.0) continue;
+    ancfAxialDampingForce(rope_.element(), rope_damping_, q.segment<12>(6 * k),
+                          v.segment<12>(6 * k), Qe, dampWeight != 0.0 ? &Ke : nullptr);
+    Q.segment<12>(6 * k) += Qe;
+    if (dampWeight == 0.0) continue;
+    const double* ce = Ke.data();
+    for (int e = 0; e < 144; ++e) val[idx[e]] += dampWeight * ce[e];
   }
   for (int d = 0; d < 3; ++d) {
     A_.coeffRef(n + d, d) = 1.0;
@@ -152,7 +166,7 @@ CoupledState FullOrderSolver::solveStatic(const Eigen::VectorXd& q_guess,
   // (bending-only lateral stiffness at low tension), where LDL^T without pivoting stops.
   Eigen::UmfPackLU<SparseMatrix> lu;
   for (int it = 0; it < 50; ++it) {
-    assemble(s.q, 0.0, 1.0, G, Q);
+    assemble(s.q, s.v, 0.0, 1.0, 0.0, G, Q);
     Eigen::VectorXd rq = -(Q - F);
     rq.head<3>() -= s.lambda;
     Eigen::VectorXd rz;
@@ -235,7 +249,7 @@ void FullOrderSolver::initializeAccelerations(CoupledState& s) {
   s.zdd = Eigen::VectorXd::Zero(m);
   Eigen::VectorXd Q, Azr, rz;
   const Eigen::Matrix3d G = support_.setIterationWeights(1.0, 0.0, 0.0);
-  assemble(s.q, 1.0, 0.0, G, Q);
+  assemble(s.q, s.v, 1.0, 0.0, 0.0, G, Q);
   if (m > 0) rz = -support_.internalForce(s.z, s.zd, s.zdd);
   const Eigen::VectorXd rhs =
       condensedRhs(rope_.gravityForce() - Q, rz, Eigen::Vector3d::Zero(), Azr);
@@ -293,7 +307,8 @@ bool FullOrderSolver::tryStep(CoupledState& s, double h, std::string& why) {
   const std::string at = "t = " + std::to_string(s.t + h) + " s";
   int it = 0;
   for (; it < newton_.max_iterations; ++it) {
-    assemble(s.q, massWeight, bh2, G, Q);
+    // d/dq of the damping force through v' = gamma / (beta h) dq, times beta h^2.
+    assemble(s.q, s.v, massWeight, bh2, ga_.gamma * h, G, Q);
     Eigen::VectorXd rq = -bh2 * (M * s.qdd + Q - rope_.gravityForce());
     rq.head<3>() -= bh2 * s.lambda;
     if (m > 0) {

@@ -48,6 +48,10 @@ ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model) : full_(
   if (full_.hoists()) {
     throw InputError(model.scene.file + ": key 'commands': " + kNoReducedHoisting);
   }
+  if (model.scene.rope.damping != 0.0) {
+    throw InputError(model.scene.file + ": key 'rope.damping': rope damping is built for the "
+                     "full-order model only (set rope.model: full)");
+  }
 
 
   solver_ = std::make_unique<ReducedOrderSolver>(full_.rope(), full_.support(),

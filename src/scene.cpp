@@ -34,8 +34,10 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   if (s.crane_name.empty()) root.fail("crane", "must name a crane file or be 'none'");
   if (s.crane_name != "none") {
     const std::string cf = resolveCraneFile(path, s.crane_name);
-    if (!std::filesystem::exists(cf)) {
-      root.fail("crane", "crane file '" + cf + "' does not exist");
+    std::error_code ec;  // a name too long for the file system is an error, not an exception
+    if (!std::filesystem::is_regular_file(cf, ec)) {
+      root.fail("crane", "crane file '" + cf + "' does not exist" +
+                             (ec ? " (" + ec.message() + ")" : std::string()));
     }
     s.crane = loadCraneDescription(cf);
   }

@@ -251,3 +251,54 @@ TEST(AncfQuadrature, ElementWithStrainSignChangeNeedsMorePoints) {
   p.gauss_points = 5;
   EXPECT_GT(std::abs(ancfElasticEnergy(p, e) - U10), 1e-8 * U10);
 }
+
+// ---- axial damping (rope.damping, issue 7) -------------------------------------------------
+
+TEST(AncfDamping, VelocityJacobianMatchesFiniteDifferences) {
+  // Q_d is linear in e', so central differences are exact up to round-off.
+  const AncfCableProperties p = ropeElement();
+  const double c = 0.01;
+  for (const Vector12& e : {stretched(), bent(), twisted(), curved3d()}) {
+    Vector12 edot;
+    for (int i = 0; i < 12; ++i) edot(i) = 0.3 * std::sin(1.7 * i + 0.4);
+    Vector12 Q0;
+    Matrix12 C;
+    ancfAxialDampingForce(p, c, e, edot, Q0, &C);
+    const double h = 1e-4;
+    for (int j = 0; j < 12; ++j) {
+      Vector12 up = edot, dn = edot, Qu, Qd;
+      up(j) += h;
+      dn(j) -= h;
+      ancfAxialDampingForce(p, c, e, up, Qu);
+      ancfAxialDampingForce(p, c, e, dn, Qd);
+      const Vector12 fd = (Qu - Qd) / (2 * h);
+      EXPECT_LT((fd - C.col(j)).norm(), 1e-9 * (1.0 + C.col(j).norm())) << "column " << j;
+    }
+  }
+}
+
+TEST(AncfDamping, RigidMotionIsNotDampedAndStretchingDissipates) {
+  const AncfCableProperties p = ropeElement();
+  const double c = 0.02;
+  const Vector12 e = curved3d();
+  // Rigid velocity: translation v0 plus rotation w x r (positions) and w x r_x (slopes).
+  const Eigen::Vector3d v0(0.3, -1.0, 2.0), w(0.2, 0.5, -0.1);
+  Vector12 rigid;
+  for (int k = 0; k < 4; ++k) {
+    const Eigen::Vector3d x = e.segment<3>(3 * k);
+    rigid.segment<3>(3 * k) = w.cross(x) + ((k % 2 == 0) ? v0 : Eigen::Vector3d::Zero());
+  }
+  Vector12 Q;
+  ancfAxialDampingForce(p, c, e, rigid, Q);
+  EXPECT_LT(Q.norm(), 1e-9 * c * p.axial_stiffness);
+  // Uniform stretching of a straight element at rate epsdot: power e'.Q_d = c EA epsdot^2 l.
+  const Vector12 s = straight(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), p.length);
+  const double epsdot = 0.003;
+  Vector12 stretch = Vector12::Zero();
+  stretch.segment<3>(6) = Eigen::Vector3d(epsdot * p.length, 0, 0);  // end node moves
+  stretch.segment<3>(3) = Eigen::Vector3d(epsdot, 0, 0);             // slopes grow
+  stretch.segment<3>(9) = Eigen::Vector3d(epsdot, 0, 0);
+  ancfAxialDampingForce(p, c, s, stretch, Q);
+  EXPECT_NEAR(stretch.dot(Q), c * p.axial_stiffness * epsdot * epsdot * p.length,
+              1e-9 * c * p.axial_stiffness * epsdot * epsdot * p.length);
+}

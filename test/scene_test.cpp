@@ -128,6 +128,10 @@ TEST(Scene, MissingEmptyOrBrokenFilesAreRefused) {
                        "rope: {model: full, length: 10}\n"
                        "initial: {mode: stress_free, payload_velocity:, [0, 0, 3]}\n");
   expectRefused(listKey, {}, {listKey, "initial", "not a name"});
+  // Also found by fuzzing: a crane name longer than the file system allows threw a
+  // std::filesystem error.
+  const std::string longName = writeScene("long_crane.yaml", std::string(kGood));
+  expectRefused(longName, {"crane=" + std::string(600, 'x'), "anchor=null"}, {longName, "crane", "does not exist"});
 }
 
 TEST(Scene, CrossKeyLimitsAreRefused) {

@@ -52,6 +52,14 @@ double ancfElasticEnergy(const AncfCableProperties& p, const Vector12& e);
 void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12& Q,
                       Matrix12* K = nullptr);
 
+/// Axial strain-rate damping (Kelvin-Voigt on the axial strain, `rope.damping` = c [s]):
+///   Q_d = int c EA eps' (d eps / d e)^T dx,  eps' = t . r_x',  t = r_x / |r_x|,
+/// dissipating int c EA eps'^2 dx >= 0 and zero for rigid motions. C_d = d Q_d / d e' =
+/// int c EA S_x^T t t^T S_x dx into *C when given (the dependence on e through t is left out
+/// of the iteration matrix).
+void ancfAxialDampingForce(const AncfCableProperties& p, double c, const Vector12& e,
+                           const Vector12& edot, Vector12& Q, Matrix12* C = nullptr);
+
 /// Axial strain eps and curvature kappa at xi (for output and tests).
 void ancfStrainCurvature(const Vector12& e, double xi, double l, double& eps, double& kappa);
 

@@ -112,6 +112,9 @@ class FullOrderSolver {
   /// left at the step's start.
   void step(CoupledState& s);
   static constexpr int kMaxHalvings = 6;
+  /// Axial strain-rate damping of the rope, c [s] (ancfAxialDampingForce; 0: none). Throws
+  /// std::invalid_argument for a negative or non-finite c.
+  void setRopeDamping(double c);
   /// Half steps taken so far in place of failed steps (0 in a smooth run).
   long halvedSteps() const { return halved_steps_; }
 
@@ -132,9 +135,11 @@ class FullOrderSolver {
   double timeStep() const { return h_; }
 
  private:
-  // Fill the values of A_ (fixed pattern, -G in the multiplier block) and the elastic force Q.
-  void assemble(const Eigen::VectorXd& q, double massWeight, double stiffWeight,
-                const Eigen::Matrix3d& G, Eigen::VectorXd& Q);
+  // Fill the values of A_ (fixed pattern, -G in the multiplier block) and the internal force Q:
+  // elastic, plus the axial damping force at velocity v with dampWeight x C_d in A_.
+  void assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double massWeight,
+                double stiffWeight, double dampWeight, const Eigen::Matrix3d& G,
+                Eigen::VectorXd& Q);
   // Recover (dq, dz, dy) from the reduced solution x = [dq; dy] of A_ x = [r_q; r_c + D A_z^-1 r_z].
   Eigen::VectorXd condensedRhs(const Eigen::VectorXd& rq, const Eigen::VectorXd& rz,
                                const Eigen::Vector3d& rc, Eigen::VectorXd& Azinv_rz) const;
@@ -145,6 +150,7 @@ class FullOrderSolver {
   // Two steps of h / 2, each halved again where it fails, down to depth kMaxHalvings.
   bool stepHalved(CoupledState& s, double h, int depth, std::string& why);
   long halved_steps_ = 0;
+  double rope_damping_ = 0.0;
   const AncfRope& rope_;
   RopeSupport& support_;
   GeneralizedAlpha ga_;
