@@ -8,7 +8,13 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 SECONDS_TO_RUN="${1:-300}"
 OUT="$ROOT/build/fuzz"
 mkdir -p "$OUT/corpus"
-command -v clang++ >/dev/null || { echo "fuzz: clang++ missing (apt-get install clang)" >&2; exit 2; }
+# clang and its sanitizer/libFuzzer runtimes, from Debian (not needed by the build or the tests).
+for p in clang libclang-rt-14-dev; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing="${missing:-} $p"
+done
+if [ -n "${missing:-}" ]; then
+  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends $missing
+fi
 clang++ -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
   -DCRANE_TWIN_SOURCE_DIR="\"$ROOT\"" -I"$ROOT/include" -I/usr/include/eigen3 \
   "$ROOT/test/fuzz/scene_loader_fuzz.cpp" "$ROOT/src/scene.cpp" "$ROOT/src/config_reader.cpp" \
