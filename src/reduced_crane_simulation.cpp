@@ -59,7 +59,14 @@ ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model) : full_(
                                                  settingsFor(model));
 }
 
-void ReducedCraneSimulation::initialize() { solver_->initialize(full_.initialState()); }
+void ReducedCraneSimulation::initialize() {
+  const CraneModel& m = full_.model();
+  weight_ = (m.end_mass + m.ropeMass()) * m.scene.gravity;
+  full_order_ = false;
+  full_order_steps_ = 0;
+  slack_episodes_ = 0;
+  solver_->initialize(full_.initialState());
+}
 
 void ReducedCraneSimulation::setCommand(const CommandEntry& command) {
   if (command.hoist_speed != 0.0) throw InputError(kNoReducedHoisting);
@@ -68,12 +75,33 @@ void ReducedCraneSimulation::setCommand(const CommandEntry& command) {
 
 // The drives move the support first (the same scheme as the full model), then one reduced step.
 void ReducedCraneSimulation::step() {
+  if (full_order_) {  // slack episode: full order until the rope is taut again
+    full_.step();
+    ++full_order_steps_;
+    // Taut again everywhere: every node's axial strain |r_x| - 1 above kTautFraction of the
+    // static strain under the end mass alone (the least-loaded point of a hanging rope).
+    const Eigen::VectorXd& q = full_.state().q;
+    const CraneModel& m = full_.model();
+    const double strain = m.end_mass * m.scene.gravity / m.rope.axial_stiffness;
+    double least = 1e300;
+    for (int j = 0; j < full_.ropeNodes(); ++j) least = std::min(least, q.segment<3>(6 * j + 3).norm() - 1.0);
+    if (least > kTautFraction * strain) {
+      solver_->restartAt(full_.state(), true);
+      full_order_ = false;
+    }
+    return;
+  }
   full_.advanceDrives(solver_->state().t, full_.solver().timeStep());
   solver_->step();
+  if (weight_ > 0.0 && solver_->topTension() < kSlackFraction * weight_) {
+    full_.setState(solver_->fullState());
+    full_order_ = true;
+    ++slack_episodes_;
+  }
 }
 
 SeriesValues ReducedCraneSimulation::series() const {
-  SeriesValues v = full_.seriesOf(solver_->fullState());
+  SeriesValues v = full_.seriesOf(fullState());
   v.subdomains = solver_->statistics().subdomains;
   return v;
 }

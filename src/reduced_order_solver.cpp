@@ -242,17 +242,24 @@ void ReducedOrderSolver::step() {
   }
 }
 
-void ReducedOrderSolver::restartAt(const CoupledState& f) {
+void ReducedOrderSolver::restartAt(const CoupledState& f, bool consistent_accelerations) {
   const int r = settings_.kept_modes;
   try {
     startSubdomain(f.q);
   } catch (const std::runtime_error& ex) {
     throw NumericalFailure(at(s_.t) + ": rope mode update failed: " + ex.what());
   }
+  s_.t = f.t;  // f may come from the full-order solver (a slack episode), not from s_
+  s_.z = f.z;
+  s_.zd = f.zd;
+  s_.zdd = f.zdd;
+  s_.za = f.za;
+  s_.lambda = f.lambda;
   s_.y.setZero(r + 3);
   s_.yd = project(f.v);
   s_.ydd = project(f.qdd);
   s_.ya = project(f.a);
+  if (consistent_accelerations) initializeAccelerations();
   const Eigen::VectorXd vr = expand(s_.yd);
   const SparseMatrix& M = rope_.massMatrix();
   stats_.projection_energy_loss += 0.5 * (f.v.dot(M * f.v) - vr.dot(M * vr));

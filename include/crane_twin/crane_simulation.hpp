@@ -78,6 +78,8 @@ class CraneSimulation final : public Simulation {
   /// True when the schedule or the manual command asks for hoisting.
   bool hoists() const;
 
+  /// Continue from a full-coordinate state (the reduced model hands a slack rope over here).
+  void setState(const CoupledState& s) { state_ = s; }
   /// Output quantities of a full-coordinate state (also used by the reduced model).
   SeriesValues seriesOf(const CoupledState& s) const;
 

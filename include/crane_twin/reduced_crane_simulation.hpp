@@ -1,6 +1,13 @@
 // A scene run with the reduced rope (rope.model: reduced, SPEC 1.6): the same rope, support and
 // initial equilibrium as the full-order model (CraneSimulation), integrated by
 // ReducedOrderSolver.
+//
+// Slack rope: a linearisation about a (nearly) slack rope is degenerate (compressed sections
+// give negative stiffness, and the modes of a rope about to go slack cannot carry it through),
+// so when the rope's top tension falls below kSlackFraction of the hanging weight the run hands
+// its expanded state to the full-order solver, and takes it back (a new subdomain) once the
+// tension is above kTautFraction of the weight again. Without this a 60 deg release (the rope
+// goes almost slack 0.19 s after release) blew up to 35 MN (docs/stability.md).
 #pragma once
 
 #include "crane_twin/crane_simulation.hpp"
@@ -19,24 +26,39 @@ class ReducedCraneSimulation final : public Simulation {
   void initialize() override;
   void step() override;
   void setCommand(const CommandEntry& command) override;
-  double time() const override { return solver_->state().t; }
+  double time() const override { return full_order_ ? full_.time() : solver_->state().t; }
   SeriesValues series() const override;
   void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab, Eigen::Vector3d& jib_tip) const override {
+    if (full_order_) return full_.sample(payload, cab, jib_tip);
     payload = solver_->nodePosition(full_.ropeNodes() - 1);
     cab = full_.support().cabDisplacement(solver_->state().z);
     jib_tip = full_.support().jibTipDisplacement(solver_->state().z);
   }
   int ropeNodes() const override { return full_.ropeNodes(); }
-  Eigen::Vector3d ropeNode(int j) const override { return solver_->nodePosition(j); }
-  CoupledState fullState() const override { return solver_->fullState(); }
+  Eigen::Vector3d ropeNode(int j) const override {
+    return full_order_ ? full_.ropeNode(j) : solver_->nodePosition(j);
+  }
+  CoupledState fullState() const override {
+    return full_order_ ? full_.fullState() : solver_->fullState();
+  }
   const CraneSimulation& crane() const override { return full_; }
   int subdomains() const override { return solver_->statistics().subdomains; }
+  /// Hand-over thresholds: top tension / hanging weight (payload, hook block, rope).
+  static constexpr double kSlackFraction = 0.3, kTautFraction = 0.6;
+  /// Steps integrated at full order while the rope was slack, and the hand-overs to it.
+  long fullOrderSteps() const { return full_order_steps_; }
+  int slackEpisodes() const { return slack_episodes_; }
+  bool integratingFullOrder() const { return full_order_; }
   double modeUpdateSeconds() const override { return solver_->statistics().mode_update_seconds; }
   const ReducedOrderSolver& solver() const { return *solver_; }
 
  private:
-  CraneSimulation full_;  ///< model setup and initial state
+  CraneSimulation full_;  ///< model setup, initial state, and the slack-rope steps
   std::unique_ptr<ReducedOrderSolver> solver_;
+  double weight_ = 0.0;     ///< hanging weight [N]
+  bool full_order_ = false;
+  long full_order_steps_ = 0;
+  int slack_episodes_ = 0;
 };
 
 }  // namespace crane_twin

@@ -82,7 +82,7 @@ class ReducedOrderSolver {
   /// Start a new subdomain at a full-coordinate state (the rope's positions, velocities and
   /// generalized-alpha accelerations; z and lambda stay): what a switch does, also used when
   /// the rope's length changed under it (hoisting).
-  void restartAt(const CoupledState& full);
+  void restartAt(const CoupledState& full, bool consistent_accelerations = false);
 
   const ReducedState& state() const { return s_; }
   const ReducedStatistics& statistics() const { return stats_; }
