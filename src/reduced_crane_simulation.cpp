@@ -62,6 +62,8 @@ ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model) : full_(
 void ReducedCraneSimulation::initialize() {
   const CraneModel& m = full_.model();
   weight_ = (m.end_mass + m.ropeMass()) * m.scene.gravity;
+  end_strain_ = m.end_mass * m.scene.gravity / m.rope.axial_stiffness;
+  reduced_steps_ = 0;
   full_order_ = false;
   full_order_steps_ = 0;
   slack_episodes_ = 0;
@@ -81,11 +83,10 @@ void ReducedCraneSimulation::step() {
     // Taut again everywhere: every node's axial strain |r_x| - 1 above kTautFraction of the
     // static strain under the end mass alone (the least-loaded point of a hanging rope).
     const Eigen::VectorXd& q = full_.state().q;
-    const CraneModel& m = full_.model();
-    const double strain = m.end_mass * m.scene.gravity / m.rope.axial_stiffness;
     double least = 1e300;
     for (int j = 0; j < full_.ropeNodes(); ++j) least = std::min(least, q.segment<3>(6 * j + 3).norm() - 1.0);
-    if (least > kTautFraction * strain) {
+    if (least > kTautFraction * end_strain_ &&
+        full_.series().rope_top_tension > kTautTensionFraction * weight_) {
       solver_->restartAt(full_.state(), true);
       full_order_ = false;
     }
@@ -93,7 +94,11 @@ void ReducedCraneSimulation::step() {
   }
   full_.advanceDrives(solver_->state().t, full_.solver().timeStep());
   solver_->step();
-  if (weight_ > 0.0 && solver_->topTension() < kSlackFraction * weight_) {
+  const bool slack =
+      weight_ > 0.0 && (solver_->topTension() < kSlackTensionFraction * weight_ ||
+                        (++reduced_steps_ % kSlackCheckSteps == 0 &&
+                         solver_->minNodalStrain() < kSlackFraction * end_strain_));
+  if (slack) {
     full_.setState(solver_->fullState());
     full_order_ = true;
     ++slack_episodes_;

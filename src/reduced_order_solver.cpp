@@ -92,7 +92,11 @@ void ReducedOrderSolver::startSubdomain(const Eigen::VectorXd& e) {
   f_.head(r) = phi_.transpose() * g;
   f_.tail<3>() = translationSum(g);
   node_rows_.resize(3 * rope_.nodes(), r);
-  for (int j = 0; j < rope_.nodes(); ++j) node_rows_.middleRows<3>(3 * j) = phi_.middleRows<3>(6 * j);
+  slope_rows_.resize(3 * rope_.nodes(), r);
+  for (int j = 0; j < rope_.nodes(); ++j) {
+    node_rows_.middleRows<3>(3 * j) = phi_.middleRows<3>(6 * j);
+    slope_rows_.middleRows<3>(3 * j) = phi_.middleRows<3>(6 * j + 3);
+  }
   e_m_ = e;
   if (settings_.residual_tolerance > 0.0) {
     K_m_ = K;
@@ -299,6 +303,16 @@ Eigen::Vector3d ReducedOrderSolver::nodePosition(int j) const {
 Eigen::Vector3d ReducedOrderSolver::nodeVelocity(int j) const {
   const int r = static_cast<int>(phi_.cols());
   return node_rows_.middleRows<3>(3 * j) * s_.yd.head(r) + s_.yd.tail<3>();
+}
+
+double ReducedOrderSolver::minNodalStrain() const {
+  const int r = static_cast<int>(phi_.cols());
+  const Eigen::VectorXd slopes = slope_rows_ * s_.y.head(r);
+  double least = 1e300;
+  for (int j = 0; j < rope_.nodes(); ++j) {
+    least = std::min(least, (e_m_.segment<3>(6 * j + 3) + slopes.segment<3>(3 * j)).norm() - 1.0);
+  }
+  return least;
 }
 
 double ReducedOrderSolver::constraintError() const {

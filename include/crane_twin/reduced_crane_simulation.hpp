@@ -4,9 +4,11 @@
 //
 // Slack rope: a linearisation about a (nearly) slack rope is degenerate (compressed sections
 // give negative stiffness, and the modes of a rope about to go slack cannot carry it through),
-// so when the rope's top tension falls below kSlackFraction of the hanging weight the run hands
-// its expanded state to the full-order solver, and takes it back (a new subdomain) once the
-// tension is above kTautFraction of the weight again. Without this a 60 deg release (the rope
+// so when the rope's top tension falls below kSlackTensionFraction of the hanging weight, or
+// (checked every kSlackCheckSteps steps) any node's axial strain below kSlackFraction of the
+// static strain under the end mass, the run hands its expanded state to the full-order solver,
+// and takes it back (a new subdomain) once every node's strain is above kTautFraction of it and
+// the top tension above kTautTensionFraction of the weight. Without this a 60 deg release (the rope
 // goes almost slack 0.19 s after release) blew up to 35 MN (docs/stability.md).
 #pragma once
 
@@ -43,8 +45,11 @@ class ReducedCraneSimulation final : public Simulation {
   }
   const CraneSimulation& crane() const override { return full_; }
   int subdomains() const override { return solver_->statistics().subdomains; }
-  /// Hand-over thresholds: top tension / hanging weight (payload, hook block, rope).
+  /// Hand-over thresholds: nodal axial strain / static strain under the end mass, and top
+  /// tension / hanging weight (payload, hook block, rope), with hysteresis.
   static constexpr double kSlackFraction = 0.3, kTautFraction = 0.6;
+  static constexpr double kSlackTensionFraction = 0.3, kTautTensionFraction = 0.45;
+  static constexpr int kSlackCheckSteps = 5;
   /// Steps integrated at full order while the rope was slack, and the hand-overs to it.
   long fullOrderSteps() const { return full_order_steps_; }
   int slackEpisodes() const { return slack_episodes_; }
@@ -56,6 +61,8 @@ class ReducedCraneSimulation final : public Simulation {
   CraneSimulation full_;  ///< model setup, initial state, and the slack-rope steps
   std::unique_ptr<ReducedOrderSolver> solver_;
   double weight_ = 0.0;     ///< hanging weight [N]
+  double end_strain_ = 0.0; ///< static axial strain under the end mass alone
+  long reduced_steps_ = 0;
   bool full_order_ = false;
   long full_order_steps_ = 0;
   int slack_episodes_ = 0;

@@ -93,6 +93,8 @@ class ReducedOrderSolver {
   Eigen::Vector3d nodePosition(int j) const;
   Eigen::Vector3d nodeVelocity(int j) const;
   double constraintError() const;
+  /// min over nodes of the axial strain |r_x| - 1 (a slack check: O(n r)).
+  double minNodalStrain() const;
   /// Rope top tension as FullOrderSolver::topTension.
   double topTension() const;
 
@@ -126,6 +128,7 @@ class ReducedOrderSolver {
   Eigen::Matrix3d Mbb_;                        ///< T^T M T (total mass I3)
   Eigen::VectorXd f_;                          ///< [Phi_c; T]^T (F_g - Q_m)
   Eigen::MatrixXd node_rows_;                  ///< 3 nodes x r: node positions of Phi_c
+  Eigen::MatrixXd slope_rows_;                 ///< 3 nodes x r: node slopes of Phi_c
   Eigen::PartialPivLU<Eigen::Matrix<double, 6, 6>> kkt_lu_;  ///< the step's 6 x 6 system
   Eigen::Matrix3d G_step_;
   SparseMatrix K_m_;            ///< tangent at e_m (kept for the residual criterion)
