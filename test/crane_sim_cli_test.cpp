@@ -61,6 +61,26 @@ TEST(CraneSimCli, InfoHonoursOverrides) {
   EXPECT_NE(r.out.find("rope_dofs,246\n"), std::string::npos);
 }
 
+TEST(CraneSimCli, InfoSaysWhatARunIntegrates) {
+  // Combination 1: the reduced rope keeps mode_fraction 0.5 of its 726 DOF, i.e. 363
+  // coordinates (360 modes + the 3 rigid translations, SPEC 1.6), and 100 structure modes;
+  // a rigid structure integrates none.
+  Result r = run("info " + kScene);
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("integrated_structure_coordinates,100\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("integrated_rope_coordinates,363\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rope_bending,on\n"), std::string::npos);
+  EXPECT_NE(r.out.find("slewing_inertial_loads,off\n"), std::string::npos);
+  r = run("info " + kScene + " --set structure.model=rigid --set rope.model=full --set rope.bending=false"
+          " --set rope.damping=0.01");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("integrated_structure_coordinates,0\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("integrated_rope_coordinates,726\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rope_bending,off\n"), std::string::npos);
+  EXPECT_NE(r.out.find("rope_damping_s,0.01\n"), std::string::npos);
+  EXPECT_NE(r.out.find("structural_damping_ratio,0\n"), std::string::npos);
+}
+
 TEST(CraneSimCli, StructureModesFormat) {
   const Result r = run("modes " + kScene + " --part structure --count 10");
   ASSERT_EQ(r.status, 0) << r.out;
