@@ -12,26 +12,14 @@ SCENE="${1:-$ROOT/config/scenes/t8036_live.yaml}"
 DURATION="${DEMO_DURATION:-20}"
 bash "$ROOT/scripts/install_deps.sh"
 bash "$ROOT/scripts/build.sh"
-export PYENV_VERSION=system
-export PATH="/usr/bin:$PATH"
-set +u  # ROS's setup scripts read unset variables
 # shellcheck disable=SC1091
-source "$ROOT/build/ws/devel/setup.bash"
-set -u
+source "$ROOT/scripts/ros_env.sh"
 SIM="$ROOT/build/ws/devel/lib/crane_twin/crane_sim"
 OUT="$ROOT/build/demo"
 mkdir -p "$OUT"
 rm -f "$OUT/demo.bag"
 
-OWN_MASTER=0
-if ! rosnode list >/dev/null 2>&1; then
-  echo "demo: starting a ROS master"
-  roscore >"$OUT/roscore.log" 2>&1 &
-  OWN_MASTER=$!
-  for _ in $(seq 100); do rosnode list >/dev/null 2>&1 && break; sleep 0.2; done
-fi
-cleanup() { [ "$OWN_MASTER" != 0 ] && kill "$OWN_MASTER" 2>/dev/null || true; }
-trap cleanup EXIT
+ensure_ros_master "$OUT/roscore.log"
 
 RVIZ=false
 if [ -n "${DISPLAY:-}" ] && xdpyinfo >/dev/null 2>&1; then RVIZ=true; fi

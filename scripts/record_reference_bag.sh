@@ -8,18 +8,9 @@
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 OUT="${1:-$ROOT/test/data/full_order_run.bag}"
-export PYENV_VERSION=system
-export PATH="/usr/bin:$PATH"
-set +u  # ROS's setup scripts read unset variables
 # shellcheck disable=SC1091
-source "$ROOT/build/ws/devel/setup.bash"
-set -u
-OWN_MASTER=0
-if ! rosnode list >/dev/null 2>&1; then
-  roscore >/dev/null 2>&1 &
-  OWN_MASTER=$!
-  for _ in $(seq 100); do rosnode list >/dev/null 2>&1 && break; sleep 0.2; done
-fi
+source "$ROOT/scripts/ros_env.sh"
+ensure_ros_master /dev/null
 rm -f "$OUT"
 roslaunch crane_twin sim.launch rviz:=false record:=true bag:="$OUT" \
   record_topics:="/crane/state /crane/command /crane/command_applied" \
@@ -31,5 +22,4 @@ OPERATOR=$!
 wait "$LAUNCH" || true
 kill "$OPERATOR" 2>/dev/null || true
 for _ in $(seq 50); do [ -f "$OUT" ] && break; sleep 0.2; done
-[ "$OWN_MASTER" != 0 ] && kill "$OWN_MASTER" 2>/dev/null || true
 rosbag info "$OUT"
