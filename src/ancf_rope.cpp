@@ -89,4 +89,20 @@ Eigen::VectorXd AncfRope::straight(const Eigen::Vector3d& top, const Eigen::Vect
   return q;
 }
 
+// r(xi) = S(xi) e per element (SPEC 1.1), xi = k / per_element.
+std::vector<Eigen::Vector3d> sampleRopeCurve(const Eigen::VectorXd& q, double l,
+                                             int per_element) {
+  if (per_element < 1) throw std::invalid_argument("rope samples per element must be >= 1");
+  const int elements = static_cast<int>(q.size()) / 6 - 1;
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(static_cast<size_t>(elements * per_element + 1));
+  for (int k = 0; k < elements; ++k) {
+    const Vector12 e = q.segment<12>(6 * k);
+    for (int i = 0; i < per_element; ++i)
+      points.push_back(ancfPosition(e, static_cast<double>(i) / per_element, l));
+  }
+  points.push_back(q.segment<3>(6 * elements));
+  return points;
+}
+
 }  // namespace crane_twin

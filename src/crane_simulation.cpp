@@ -4,6 +4,7 @@
 #include <iomanip>
 
 #include "crane_twin/config_reader.hpp"
+#include "crane_twin/crane_snapshot.hpp"
 #include "crane_twin/rope_modes.hpp"
 #include "crane_twin/structure_support.hpp"
 
@@ -38,7 +39,7 @@ std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
                                                 theta);
 }
 
-CraneSimulation::CraneSimulation(const CraneModel& m) : model_(m) {
+CraneSimulation::CraneSimulation(const CraneModel& m) : model_(m), drives_(model_.scene) {
   // Everything below refers to the own copy model_ (the support keeps references into it).
   const CraneModel& model = model_;
   const Scene& sc = model.scene;
@@ -47,14 +48,6 @@ CraneSimulation::CraneSimulation(const CraneModel& m) : model_(m) {
   }
   if (sc.slew_inertial_loads) {
     throw InputError(sc.file + ": key 'slewing.inertial_loads': the inertial loads of slewing on the structure are not built yet");
-  }
-  for (const auto& c : sc.commands) {
-    if (c.slew_rate != 0.0 || c.trolley_speed != 0.0 || c.hoist_speed != 0.0) {
-      if (!sc.crane) {
-        throw InputError(sc.file + ": key 'commands': drives need a crane (crane: none has none)");
-      }
-      drives_ = true;
-    }
   }
   const double trolleyMass = sc.crane ? sc.crane->trolley_mass : 0.0;
   rope_ = std::make_unique<AncfRope>(sc.rope.elements, sc.rope.length,
@@ -75,63 +68,25 @@ CoupledState CraneSimulation::staticState(Eigen::Vector3d* holding_force) {
 
 void CraneSimulation::resetDrives() {
   const Scene& sc = model_.scene;
+  drives_.reset();
   if (!sc.crane) return;
-  const CraneDescription& c = *sc.crane;
-  slew_.emplace(c.slewing, sc.slew_angle);
-  trolley_.emplace(c.trolley, sc.trolley_radius, c.min_radius, c.max_radius);
-  hoist_.emplace(c.hoist, sc.rope.length, c.min_rope_length, c.max_rope_length);
   if (rope_->length() != sc.rope.length) {
     rope_->setLength(sc.rope.length);
     solver_->refreshMass();
   }
-  slew_flags_ = trolley_flags_ = hoist_flags_ = DriveFlags{};
-  manual_.reset();
   support_->setPose(sc.slew_angle, sc.trolley_radius);
 }
 
-void CraneSimulation::setCommand(const CommandEntry& c) {
-  if (!std::isfinite(c.slew_rate) || !std::isfinite(c.trolley_speed) ||
-      !std::isfinite(c.hoist_speed)) {
-    throw std::invalid_argument("command with a non-finite rate");
-  }
-  if (!model_.scene.crane && (c.slew_rate != 0.0 || c.trolley_speed != 0.0 || c.hoist_speed != 0.0)) {
-    throw InputError("drives need a crane (crane: none has none)");
-  }
-  manual_ = c;
-  drives_ = true;
-}
-
-bool CraneSimulation::hoists() const {
-  if (manual_ && manual_->hoist_speed != 0.0) return true;
-  for (const auto& c : model_.scene.commands)
-    if (c.hoist_speed != 0.0) return true;
-  return false;
-}
-
-CommandEntry CraneSimulation::activeCommand(double t) const {
-  if (manual_) return *manual_;
-  CommandEntry active;
-  for (const auto& c : model_.scene.commands) {
-    if (c.t <= t + 1e-9) active = c;
-  }
-  return active;
-}
-
 void CraneSimulation::advanceDrives(double t, double dt) {
-  if (!drives_ || !slew_) return;
-  const CommandEntry c = activeCommand(t);
-  slew_flags_ = slew_->advance(c.slew_rate, dt);
-  trolley_flags_ = trolley_->advance(c.trolley_speed, dt);
-  hoist_flags_ = hoist_->advance(c.hoist_speed, dt);
-  support_->setPose(slew_->position(), trolley_->position());
+  if (drives_.advance(t, dt)) support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
 }
 
 // Hoisting by uniform rescaling (docs/model.md): the new reference length is spread over all
 // elements, the geometry and nodal velocities are kept (slope coordinates rescaled), M and F_g
 // rebuilt so the rope's mass is mu L exactly.
 void CraneSimulation::applyRopeLength(CoupledState& s) {
-  if (!hoist_) return;
-  const double from = rope_->length(), to = hoist_->position();
+  if (!model_.scene.crane) return;
+  const double from = rope_->length(), to = drives_.hoistLength();
   if (to == from) return;
   rope_->setLength(to);
   solver_->refreshMass();
@@ -177,25 +132,25 @@ SeriesValues CraneSimulation::seriesOf(const CoupledState& s) const {
   v.trolley = support_->point(s.z);
   v.rope_top_tension = ropeTopTension(*rope_, s);
   v.rope_length = rope_->length();
-  v.slew_angle = slewAngle();
-  v.trolley_radius = trolleyRadius();
+  v.slew_angle = drives_.slewAngle();
+  v.trolley_radius = drives_.trolleyRadius();
   v.energy = mechanicalEnergy(*rope_, *support_, s);
   v.constraint_error = (s.q.head<3>() - support_->point(s.z)).norm();
   v.tension_ratio = v.rope_top_tension / model_.rope.breaking_force;
   if (v.tension_ratio > 1.0) v.warnings |= kTensionOverBreakingForce;
   if (sc.crane) {
-    v.load_chart_ratio = sc.payload_mass / allowedLoad(*sc.crane, trolleyRadius());
+    v.load_chart_ratio = sc.payload_mass / allowedLoad(*sc.crane, drives_.trolleyRadius());
     if (v.load_chart_ratio > 1.0 + 1e-12) v.warnings |= kOutsideLoadChart;
   }
-  if (hoist_flags_.at_position_limit) v.warnings |= kRopeLengthAtLimit;
-  if (trolley_flags_.at_position_limit) v.warnings |= kTrolleyAtLimit;
-  if (slew_flags_.speed_limited || trolley_flags_.speed_limited || hoist_flags_.speed_limited) {
-    v.warnings |= kCommandLimited;
-  }
+  drives_.addWarnings(v);
   return v;
 }
 
 SeriesValues CraneSimulation::series() const { return seriesOf(state_); }
+
+std::vector<Eigen::Vector3d> CraneSimulation::ropeCurve(int per_element) const {
+  return sampleRopeCurve(state_.q, rope_->element().length, per_element);
+}
 
 ModalBasis CraneSimulation::ropeModes(int count) {
   const CoupledState eq = solver_->solveSwingEquilibrium(0.0, 0.0);

@@ -3,26 +3,12 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "crane_twin/crane_simulation.hpp"
+#include "crane_twin/crane_drives.hpp"
+#include "crane_twin/full_order_solver.hpp"
+#include "crane_twin/rope_support.hpp"
 #include "crane_twin/structure_support.hpp"
 
 namespace crane_twin {
-
-// r(xi) = S(xi) e per element (SPEC 1.1), xi = k / per_element.
-std::vector<Eigen::Vector3d> sampleRopeCurve(const Eigen::VectorXd& q, double l,
-                                             int per_element) {
-  if (per_element < 1) throw std::invalid_argument("rope samples per element must be >= 1");
-  const int elements = static_cast<int>(q.size()) / 6 - 1;
-  std::vector<Eigen::Vector3d> points;
-  points.reserve(static_cast<size_t>(elements * per_element + 1));
-  for (int k = 0; k < elements; ++k) {
-    const Vector12 e = q.segment<12>(6 * k);
-    for (int i = 0; i < per_element; ++i)
-      points.push_back(ancfPosition(e, static_cast<double>(i) / per_element, l));
-  }
-  points.push_back(q.segment<3>(6 * elements));
-  return points;
-}
 
 namespace {
 
@@ -37,29 +23,30 @@ CraneSnapshot snapshotOf(const Simulation& sim, const SnapshotOptions& options) 
   if (!(options.displacement_scale >= 0.0) || !std::isfinite(options.displacement_scale)) {
     throw std::invalid_argument("displacement scale must be finite and >= 0");
   }
-  const CraneSimulation& crane = sim.crane();
-  const CoupledState state = sim.fullState();
+  if (options.samples_per_element < 1) {
+    throw std::invalid_argument("rope samples per element must be >= 1");
+  }
+  const CraneDrives& drives = sim.drives();
+  const RopeSupport& support = sim.support();
   CraneSnapshot s;
   s.series = sim.series();
-  s.slew_angle = crane.slewAngle();
-  s.slew_rate = crane.slewRate();
-  s.trolley_radius = crane.trolleyRadius();
-  s.trolley_speed = crane.trolleySpeed();
-  s.rope_length = crane.ropeLength();
-  s.hoist_speed = crane.hoistSpeed();
+  s.slew_angle = drives.slewAngle();
+  s.slew_rate = drives.slewRate();
+  s.trolley_radius = drives.trolleyRadius();
+  s.trolley_speed = drives.trolleySpeed();
+  s.rope_length = s.series.rope_length;
+  s.hoist_speed = drives.hoistSpeed();
 
-  const AncfRope& rope = crane.rope();
-  s.rope_curve = sampleRopeCurve(state.q, rope.element().length, options.samples_per_element);
-  const int end = rope.nodes() - 1;
-  const Eigen::Vector3d end_slope = state.q.segment<3>(6 * end + 3);
-  s.hook.position = state.q.segment<3>(6 * end);
-  s.hook.orientation = end_slope.norm() > 0.0 ? zAxisAlong(-end_slope.normalized())
-                                              : Eigen::Quaterniond::Identity();
+  s.rope_curve = sim.ropeCurve(options.samples_per_element);
+  // The hook's z axis along the rope's last sampled segment, pointing up the rope.
+  const Eigen::Vector3d up = s.rope_curve[s.rope_curve.size() - 2] - s.rope_curve.back();
+  s.hook.position = s.rope_curve.back();
+  s.hook.orientation = up.norm() > 0.0 ? zAxisAlong(up.normalized()) : Eigen::Quaterniond::Identity();
   s.payload = s.hook;
 
   const Eigen::Matrix3d R = slewRotation(s.slew_angle);
   s.slewing.orientation = Eigen::Quaterniond(R);
-  const TowerCraneStructure* structure = crane.support().structure();
+  const TowerCraneStructure* structure = support.structure();
   s.has_crane = structure != nullptr;
   if (!structure) {
     // crane: none: the anchor stands for the trolley, in the world (= slewing) frame.
@@ -73,7 +60,7 @@ CraneSnapshot snapshotOf(const Simulation& sim, const SnapshotOptions& options) 
   s.jib_tip.position = tip0 + s.series.jib_tip;
   s.cab.position = structure->nodes[structure->cab_node] + s.series.cab;
   if (options.structure_segments) {
-    const Eigen::VectorXd u = crane.support().structureDisplacement(state.z);
+    const Eigen::VectorXd u = support.structureDisplacement(sim.fullState().z);
     const double scale = options.displacement_scale;
     auto world = [&](int n) {
       return Eigen::Vector3d(R * (structure->nodes[n] + scale * structure->nodeDisplacement(u, n)));

@@ -45,7 +45,7 @@ const char* const kNoReducedHoisting =
 }  // namespace
 
 ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model) : full_(model) {
-  if (full_.hoists()) {
+  if (full_.drives().hoists()) {
     throw InputError(model.scene.file + ": key 'commands': " + kNoReducedHoisting);
   }
   if (model.scene.rope.damping != 0.0) {

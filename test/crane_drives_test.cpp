@@ -36,8 +36,8 @@ TEST(CraneDrives, TrolleyScheduleEndsAtTheClosedFormRadius) {
                              "commands=[{t: 0, trolley_speed: -0.5}, {t: 10, trolley_speed: 0}]"}));
   sim.initialize();
   run(sim, 12.0);
-  EXPECT_NEAR(sim.trolleyRadius(), 75.0, 1e-9);
-  EXPECT_NEAR(sim.trolleySpeed(), 0.0, 1e-12);
+  EXPECT_NEAR(sim.drives().trolleyRadius(), 75.0, 1e-9);
+  EXPECT_NEAR(sim.drives().trolleySpeed(), 0.0, 1e-12);
   // The rope's top follows the trolley point exactly.
   EXPECT_NEAR(sim.series().trolley.x(), 75.0, 1e-9);
   EXPECT_LT(sim.series().constraint_error, 1e-9);
@@ -52,12 +52,12 @@ TEST(CraneDrives, SlewingTurnsTheTrolleyPointAndTheFlexibleJib) {
   sim.initialize();
   run(sim, std::ceil((T + 5.0) / 0.01) * 0.01);
   // The schedule switches at the first step at or after T: 0.05 rad/s for ceil(T / dt) steps.
-  EXPECT_NEAR(sim.slewAngle(), 0.05 * 0.01 * std::ceil(T / 0.01 - 1e-9), 1e-9);
+  EXPECT_NEAR(sim.drives().slewAngle(), 0.05 * 0.01 * std::ceil(T / 0.01 - 1e-9), 1e-9);
   const SeriesValues v = sim.series();
   // The undeformed trolley point turned by the slewing angle; the deformed one differs by the
   // structure's (slewing-frame) deflection under the swinging rope's pull.
   const Eigen::Vector3d p0 = sim.support().point(Eigen::VectorXd::Zero(sim.support().size()));
-  EXPECT_NEAR(std::atan2(p0.y(), p0.x()), sim.slewAngle(), 1e-12);
+  EXPECT_NEAR(std::atan2(p0.y(), p0.x()), sim.drives().slewAngle(), 1e-12);
   EXPECT_NEAR(p0.head<2>().norm(), 80.0, 1e-9);
   std::printf("after a quarter turn: payload %.2f m from under the trolley, trolley point "
               "%.3f m off its undeformed place\n", (v.payload - v.trolley).head<2>().norm(),
@@ -101,17 +101,17 @@ TEST(CraneDrives, NodeFacingApiSetsCommandsAndRejectsBadOnes) {
   sim.setCommand(c);
   run(sim, 2.0);
   // 0.6 s ramp at 0.5 m/s^2 to 0.3 m/s, then 1.4 s: 0.09 + 0.42 m.
-  EXPECT_NEAR(sim.trolleyRadius(), 80.0 - 0.09 - 0.42, 1e-9);
+  EXPECT_NEAR(sim.drives().trolleyRadius(), 80.0 - 0.09 - 0.42, 1e-9);
   CommandEntry bad = c;
   bad.slew_rate = std::nan("");
   EXPECT_THROW(sim.setCommand(bad), std::invalid_argument);
   run(sim, 1.0);  // the last good command still drives
-  EXPECT_NEAR(sim.trolleyRadius(), 80.0 - 0.09 - 0.42 - 0.3, 1e-9);
+  EXPECT_NEAR(sim.drives().trolleyRadius(), 80.0 - 0.09 - 0.42 - 0.3, 1e-9);
   // Beyond the speed limit: limited and flagged.
   c.trolley_speed = -5.0;
   sim.setCommand(c);
   sim.step();
-  EXPECT_TRUE(sim.trolleyFlags().speed_limited);
+  EXPECT_TRUE(sim.drives().trolleyFlags().speed_limited);
 }
 
 TEST(CraneDrives, ScenesRefuseWhatIsNotBuilt) {
@@ -202,8 +202,8 @@ TEST(CraneDrives, ReducedTracksFullOnTheDriveScenes) {
     std::printf("%s: reduced vs full payload error %.3g m, %d subdomains\n", scene, err,
                 red.subdomains());
     EXPECT_LT(err, 0.3) << scene;
-    EXPECT_NEAR(red.crane().trolleyRadius(), full.trolleyRadius(), 1e-12);
-    EXPECT_NEAR(red.crane().slewAngle(), full.slewAngle(), 1e-12);
+    EXPECT_NEAR(red.drives().trolleyRadius(), full.drives().trolleyRadius(), 1e-12);
+    EXPECT_NEAR(red.drives().slewAngle(), full.drives().slewAngle(), 1e-12);
     EXPECT_NEAR(red.crane().ropeLength(), full.ropeLength(), 1e-12);
   }
 }

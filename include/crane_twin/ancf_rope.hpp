@@ -67,4 +67,9 @@ class AncfRope {
   void assembleMass();
 };
 
+/// Points r(x) of an ANCF rope with coordinates q (6 per node) and element length l, sampled
+/// `per_element` times per element plus the end node (SPEC 1.1 shape functions).
+std::vector<Eigen::Vector3d> sampleRopeCurve(const Eigen::VectorXd& q, double l,
+                                             int per_element);
+
 }  // namespace crane_twin

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "crane_twin/crane_model.hpp"
-#include "crane_twin/drive_axis.hpp"
+#include "crane_twin/crane_drives.hpp"
 #include "crane_twin/full_order_solver.hpp"
 #include "crane_twin/modal_analysis.hpp"
 #include "crane_twin/rope_support.hpp"
@@ -40,43 +40,25 @@ class CraneSimulation final : public Simulation {
   int ropeNodes() const override { return rope_->nodes(); }
   Eigen::Vector3d ropeNode(int j) const override { return AncfRope::nodePosition(state_.q, j); }
   CoupledState fullState() const override { return state_; }
-  const CraneSimulation& crane() const override { return *this; }
+  std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override;
   long halvedSteps() const override { return solver_->halvedSteps(); }
   const CraneModel& model() const { return model_; }
   const CoupledState& state() const { return state_; }
   RopeSupport& support() { return *support_; }
-  const RopeSupport& support() const { return *support_; }
+  const RopeSupport& support() const override { return *support_; }
   const AncfRope& rope() const { return *rope_; }
   const FullOrderSolver& solver() const { return *solver_; }
 
   // ---- Drives (SPEC 1.4), the API the ROS node uses ----
-  /// Operator command from now on, overriding the scene's schedule (t is ignored). Throws
-  /// std::invalid_argument for a non-finite value and InputError for drives without a crane;
-  /// the state is unchanged then.
-  void setCommand(const CommandEntry& command) override;
-  /// The command in force at time t: the manual one if set, else the schedule's last entry at
-  /// or before t (zero before the first).
-  CommandEntry activeCommand(double t) const;
-  double slewAngle() const { return slew_ ? slew_->position() : 0.0; }
-  double trolleyRadius() const { return trolley_ ? trolley_->position() : 0.0; }
-  double slewRate() const { return slew_ ? slew_->speed() : 0.0; }
-  double trolleySpeed() const { return trolley_ ? trolley_->speed() : 0.0; }
+  /// Operator command from now on, overriding the scene's schedule (CraneDrives::setCommand).
+  void setCommand(const CommandEntry& command) override { drives_.setCommand(command); }
+  const CraneDrives& drives() const override { return drives_; }
   double ropeLength() const { return rope_->length(); }
-  double hoistSpeed() const { return hoist_ ? hoist_->speed() : 0.0; }
-  /// The hoist drive's length; the rope's own (ropeLength) catches up in applyRopeLength.
-  double hoistLength() const { return hoist_ ? hoist_->position() : rope_->length(); }
-  const DriveFlags& hoistFlags() const { return hoist_flags_; }
-  /// What limited the drives in the last step (speed or position limits).
-  const DriveFlags& slewFlags() const { return slew_flags_; }
-  const DriveFlags& trolleyFlags() const { return trolley_flags_; }
   /// Advance the drives by dt under the active command and move the support (called before a
   /// step by either model).
   void advanceDrives(double t, double dt);
-  bool hasDrives() const { return drives_; }
   /// Bring the rope to the hoist drive's length, rescaling a full-coordinate state with it.
   void applyRopeLength(CoupledState& s);
-  /// True when the schedule or the manual command asks for hoisting.
-  bool hoists() const;
 
   /// Continue from a full-coordinate state (the reduced model hands a slack rope over here).
   void setState(const CoupledState& s) { state_ = s; }
@@ -97,10 +79,7 @@ class CraneSimulation final : public Simulation {
   std::unique_ptr<RopeSupport> support_;
   std::unique_ptr<FullOrderSolver> solver_;
   CoupledState state_;
-  std::optional<DriveAxis> slew_, trolley_, hoist_;
-  DriveFlags slew_flags_, trolley_flags_, hoist_flags_;
-  bool drives_ = false;  ///< the scene commands motion (or a command was set)
-  std::optional<CommandEntry> manual_;
+  CraneDrives drives_;
   void resetDrives();
 };
 

@@ -1,6 +1,6 @@
 // What a viewer of a running simulation needs at one instant (SPEC 3.2), computed without ROS:
 // the time-series values, the drive joints, the frames of the crane's reference points at
-// their deformed positions, the rope as a curve sampled from the ANCF shape functions, and
+// their deformed positions, the rope as a curve sampled from its shape functions, and
 // the deformed structure as line segments. The ROS node only converts this to messages.
 //
 // Frames (all right-handed, metres):
@@ -8,8 +8,8 @@
 //   slewing = Rz(theta)        the superstructure's frame, same origin (SPEC 1.4);
 //   jib_tip, cab, trolley      in the slewing frame: undeformed point + displacement u (no
 //                              rotation: the structure is linear, its node rotations small);
-//   hook, payload              in the world frame at the rope's end node, z axis along the
-//                              rope's upward tangent -r_x at the end. The model lumps hook block
+//   hook, payload              in the world frame at the rope's end node, z axis up along the
+//                              rope's last sampled segment (its end tangent). The model lumps hook block
 //                              and payload into one end mass, so both frames share that point.
 #pragma once
 
@@ -47,10 +47,5 @@ struct CraneSnapshot {
 
 /// Snapshot of a running simulation. Throws std::invalid_argument for bad options.
 CraneSnapshot snapshotOf(const Simulation& sim, const SnapshotOptions& options = {});
-
-/// Points r(x) of an ANCF rope with coordinates q (6 per node) and element length l, sampled
-/// `per_element` times per element plus the end node (SPEC 1.1 shape functions).
-std::vector<Eigen::Vector3d> sampleRopeCurve(const Eigen::VectorXd& q, double l,
-                                             int per_element);
 
 }  // namespace crane_twin

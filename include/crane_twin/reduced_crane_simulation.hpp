@@ -13,6 +13,7 @@
 #pragma once
 
 #include "crane_twin/crane_simulation.hpp"
+#include "crane_twin/crane_snapshot.hpp"
 #include "crane_twin/reduced_order_solver.hpp"
 
 namespace crane_twin {
@@ -43,7 +44,13 @@ class ReducedCraneSimulation final : public Simulation {
   CoupledState fullState() const override {
     return full_order_ ? full_.fullState() : solver_->fullState();
   }
-  const CraneSimulation& crane() const override { return full_; }
+  /// The full-order setup behind the run (model, rope, support, drives; slack-rope steps).
+  const CraneSimulation& crane() const { return full_; }
+  const CraneDrives& drives() const override { return full_.drives(); }
+  const RopeSupport& support() const override { return full_.support(); }
+  std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override {
+    return sampleRopeCurve(fullState().q, full_.rope().element().length, per_element);
+  }
   int subdomains() const override { return solver_->statistics().subdomains; }
   /// Hand-over thresholds: nodal axial strain / static strain under the end mass, and top
   /// tension / hanging weight (payload, hook block, rope), with hysteresis.

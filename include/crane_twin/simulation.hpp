@@ -5,13 +5,15 @@
 #include <Eigen/Dense>
 #include <memory>
 #include <ostream>
+#include <vector>
 
 namespace crane_twin {
 
 struct CraneModel;
 struct CommandEntry;
 struct CoupledState;
-class CraneSimulation;
+class CraneDrives;
+class RopeSupport;
 
 /// One row of the SPEC 3.1 time series.
 struct SeriesValues {
@@ -61,10 +63,16 @@ class Simulation {
   /// 1.4). Throws std::invalid_argument for a non-finite value and InputError for what is not
   /// built; the state is unchanged then.
   virtual void setCommand(const CommandEntry& command) = 0;
-  /// The state in full rope coordinates (the reduced model expands its own: O(n r)).
+  /// The state in the rope model's own full coordinates (ANCF q, or the pendulum's two points;
+  /// the reduced model expands its own: O(n r)) and the support's coordinates z.
   virtual CoupledState fullState() const = 0;
-  /// The full-order setup behind the run: model, rope, support and drive state.
-  virtual const CraneSimulation& crane() const = 0;
+  /// The drives' state (slewing angle, trolley radius, hoist length, speeds, flags).
+  virtual const CraneDrives& drives() const = 0;
+  /// What holds the rope (structure, rigid trolley point or anchor).
+  virtual const RopeSupport& support() const = 0;
+  /// Points along the deformed rope, top to end: per_element points per element of the model
+  /// (interpolated with its shape functions), then the end point [m, world frame].
+  virtual std::vector<Eigen::Vector3d> ropeCurve(int per_element) const = 0;
   /// Subdomains started and wall time in rope mode updates (0 for a full-order run).
   virtual int subdomains() const { return 0; }
   virtual double modeUpdateSeconds() const { return 0.0; }
