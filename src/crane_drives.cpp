@@ -71,12 +71,18 @@ bool CraneDrives::advance(double t, double dt) {
   return true;
 }
 
-void CraneDrives::addWarnings(SeriesValues& v) const {
-  if (hoist_flags_.at_position_limit) v.warnings |= kRopeLengthAtLimit;
-  if (trolley_flags_.at_position_limit) v.warnings |= kTrolleyAtLimit;
-  if (slew_flags_.speed_limited || trolley_flags_.speed_limited || hoist_flags_.speed_limited) {
-    v.warnings |= kCommandLimited;
+void setCraneWarnings(const CraneModel& model, const CraneDrives& drives, SeriesValues& v) {
+  const Scene& sc = model.scene;
+  v.tension_ratio = v.rope_top_tension / model.rope.breaking_force;
+  if (v.tension_ratio > 1.0) v.warnings |= kTensionOverBreakingForce;
+  if (sc.crane) {
+    v.load_chart_ratio = sc.payload_mass / allowedLoad(*sc.crane, drives.trolleyRadius());
+    if (v.load_chart_ratio > 1.0 + 1e-12) v.warnings |= kOutsideLoadChart;
   }
+  const DriveFlags &s = drives.slewFlags(), &t = drives.trolleyFlags(), &h = drives.hoistFlags();
+  if (h.at_position_limit) v.warnings |= kRopeLengthAtLimit;
+  if (t.at_position_limit) v.warnings |= kTrolleyAtLimit;
+  if (s.speed_limited || t.speed_limited || h.speed_limited) v.warnings |= kCommandLimited;
 }
 
 }  // namespace crane_twin

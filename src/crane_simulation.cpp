@@ -44,7 +44,8 @@ CraneSimulation::CraneSimulation(const CraneModel& m) : model_(m), drives_(model
   const CraneModel& model = model_;
   const Scene& sc = model.scene;
   if (sc.rope.model == "pendulum") {
-    throw InputError(sc.file + ": key 'rope.model': the pendulum rope is not built yet");
+    throw InputError(sc.file + ": key 'rope.model': the ANCF rope cannot run a pendulum scene "
+                     "(makeSimulation builds PendulumCraneSimulation for it)");
   }
   if (sc.slew_inertial_loads) {
     throw InputError(sc.file + ": key 'slewing.inertial_loads': the inertial loads of slewing on the structure are not built yet");
@@ -136,13 +137,7 @@ SeriesValues CraneSimulation::seriesOf(const CoupledState& s) const {
   v.trolley_radius = drives_.trolleyRadius();
   v.energy = mechanicalEnergy(*rope_, *support_, s);
   v.constraint_error = (s.q.head<3>() - support_->point(s.z)).norm();
-  v.tension_ratio = v.rope_top_tension / model_.rope.breaking_force;
-  if (v.tension_ratio > 1.0) v.warnings |= kTensionOverBreakingForce;
-  if (sc.crane) {
-    v.load_chart_ratio = sc.payload_mass / allowedLoad(*sc.crane, drives_.trolleyRadius());
-    if (v.load_chart_ratio > 1.0 + 1e-12) v.warnings |= kOutsideLoadChart;
-  }
-  drives_.addWarnings(v);
+  setCraneWarnings(model_, drives_, v);
   return v;
 }
 

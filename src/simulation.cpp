@@ -4,6 +4,7 @@
 
 #include "crane_twin/config_reader.hpp"
 #include "crane_twin/crane_simulation.hpp"
+#include "crane_twin/pendulum_crane_simulation.hpp"
 #include "crane_twin/reduced_crane_simulation.hpp"
 
 namespace crane_twin {
@@ -51,6 +52,7 @@ std::unique_ptr<Simulation> makeSimulation(const CraneModel& model) {
   const Scene& sc = model.scene;
   if (sc.rope.model == "full") return std::make_unique<CraneSimulation>(model);
   if (sc.rope.model == "reduced") return std::make_unique<ReducedCraneSimulation>(model);
+  if (sc.rope.model == "pendulum") return std::make_unique<PendulumCraneSimulation>(model);
   throw InputError(sc.file + ": key 'rope.model': '" + sc.rope.model + "' is not built yet");
 }
 

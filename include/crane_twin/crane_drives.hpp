@@ -8,6 +8,7 @@
 
 #include <optional>
 
+#include "crane_twin/crane_model.hpp"
 #include "crane_twin/drive_axis.hpp"
 #include "crane_twin/scene.hpp"
 #include "crane_twin/simulation.hpp"
@@ -48,8 +49,6 @@ class CraneDrives {
   const DriveFlags& slewFlags() const { return slew_flags_; }
   const DriveFlags& trolleyFlags() const { return trolley_flags_; }
   const DriveFlags& hoistFlags() const { return hoist_flags_; }
-  /// Sets the drive warnings of v (length and radius limits, limited commands).
-  void addWarnings(SeriesValues& v) const;
 
  private:
   const Scene& scene_;
@@ -58,5 +57,11 @@ class CraneDrives {
   bool active_ = false;
   std::optional<CommandEntry> manual_;
 };
+
+/// The physical warnings of an output row (issue 7) from its rope_top_tension and the drives:
+/// tension_ratio = tension / breaking force of all falls, load_chart_ratio = payload / allowed
+/// load at the current radius, and the warning bits (over breaking force, outside the load
+/// chart, rope length or radius at a limit, a command limited).
+void setCraneWarnings(const CraneModel& model, const CraneDrives& drives, SeriesValues& v);
 
 }  // namespace crane_twin

@@ -17,6 +17,7 @@
 #include "crane_twin/crane_model.hpp"
 #include "crane_twin/modal_analysis.hpp"
 #include "crane_twin/crane_simulation.hpp"
+#include "crane_twin/pendulum_crane_simulation.hpp"
 #include "crane_twin/reduced_crane_simulation.hpp"
 #include "crane_twin/simulation.hpp"
 #include "crane_twin/accuracy_sweep.hpp"
@@ -58,9 +59,12 @@ int runInfo(const SceneArgs& a) {
   if (m.structure && sc.structure_model == "modal") structureCoords = sc.structure_modes;
   if (m.structure && sc.structure_model == "full") structureCoords = m.structure->free_dofs;
   std::printf("integrated_structure_coordinates,%d\n", structureCoords);
+  const bool pendulum = sc.rope.model == "pendulum";
   std::printf("integrated_rope_coordinates,%d\n",
-              sc.rope.model == "reduced" ? ct::keptRopeModes(m) + 3 : m.ropeDofs());
-  std::printf("rope_bending,%s\n", sc.rope.bending ? "on" : "off");
+              pendulum ? ct::PendulumRope::kDofs
+                       : sc.rope.model == "reduced" ? ct::keptRopeModes(m) + 3 : m.ropeDofs());
+  // The pendulum is a straight bar: it has no bending whatever rope.bending says.
+  std::printf("rope_bending,%s\n", sc.rope.bending && !pendulum ? "on" : "off");
   std::printf("rope_damping_s,%g\n", sc.rope.damping);
   std::printf("structural_damping_ratio,%g\n",
               m.structure && sc.structure_model != "rigid" ? sc.structure_damping_ratio : 0.0);
@@ -182,8 +186,19 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
 
 int runStatic(const SceneArgs& a) {
   const ct::CraneModel m = ct::buildCraneModel(ct::loadScene(a.scene, a.sets));
-  ct::CraneSimulation sim(m);
   Eigen::Vector3d H;
+  if (m.scene.rope.model == "pendulum") {
+    ct::PendulumCraneSimulation sim(m);
+    const ct::CoupledState s = sim.staticState(&H);
+    const Eigen::Vector3d p = s.q.tail<3>();
+    std::printf("payload_x,%.9f\npayload_y,%.9f\npayload_z,%.9f\n", p.x(), p.y(), p.z());
+    std::printf("rope_top_tension,%.6f\n", sim.topTension(s));
+    std::printf("jib_tip_dz,%.9f\n", sim.support().jibTipDisplacement(s.z).z());
+    std::printf("cab_dx,%.9f\n", sim.support().cabDisplacement(s.z).x());
+    std::printf("holding_force_x,%.6f\nholding_force_y,%.6f\n", H.x(), H.y());
+    return 0;
+  }
+  ct::CraneSimulation sim(m);
   const ct::CoupledState s = sim.staticState(&H);
   const Eigen::Vector3d p = ct::AncfRope::nodePosition(s.q, sim.rope().nodes() - 1);
   std::printf("payload_x,%.9f\npayload_y,%.9f\npayload_z,%.9f\n", p.x(), p.y(), p.z());

@@ -1,0 +1,70 @@
+// The cheapest rung of the rope ladder (SPEC 2, `rope.model: pendulum`): the hanging rope as
+// one straight elastic bar from its top point r_0 to its end point r_1 (hook block and
+// payload), with the rope's mass and no ANCF.
+//
+// Coordinates q = [r_0; r_1] [m, world frame] (6; the top point is held at the trolley by the
+// same constraint as the ANCF rope's top node).
+//   Mass:     M = mu L / 6 [[2 I, I], [I, 2 I]] + diag(m_top I, m_end I): the rope's mass
+//             mu L spread uniformly along the chord (the linear bar's consistent mass), the
+//             trolley at r_0, hook block and payload at r_1: rope mass exact, as in the ANCF
+//             rope. Kinetic energy of a rigid swing about r_0: (m_end + mu L / 3) l^2 w^2 / 2.
+//   Gravity:  F_g = M [g; g]: mu L g / 2 at each end plus the point masses' weights, so the
+//             top force at rest is (m_end + mu L) g, the ANCF rope's.
+//   Elastic:  l = |r_1 - r_0|, u = (r_1 - r_0) / l, tension T = EA (l - L) / L for l > L and
+//             0 when slack (a rope takes no compression);
+//             Q = T [-u; u],  K = dQ/dq = [[K_b, -K_b], [-K_b, K_b]],
+//             K_b = EA / L u u^T + T / l (I - u u^T) (taut; 0 slack);
+//             U = EA (l - L)^2 / (2 L) for l > L.
+//   Damping:  Kelvin-Voigt on the axial strain rate, T_d = c EA / L (u . (v_1 - v_0)) while
+//             taut, Q_d = T_d [-u; u] (dQ_d/dv = c EA / L [[u u^T, -u u^T], [-u u^T, u u^T]]).
+// What it leaves out against the ANCF rope: bending, the rope's own transverse modes (its
+// sag between the ends) and the tension's variation along the rope.
+#pragma once
+
+#include <Eigen/Dense>
+
+namespace crane_twin {
+
+using Vector6 = Eigen::Matrix<double, 6, 1>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
+
+class PendulumRope {
+ public:
+  static constexpr int kDofs = 6;
+  /// length > 0 [m] unstretched, mass_per_length >= 0 [kg/m], axial_stiffness EA > 0 [N], end
+  /// and top masses >= 0 [kg]. Throws std::invalid_argument otherwise.
+  PendulumRope(double length, double mass_per_length, double axial_stiffness, double end_mass,
+               const Eigen::Vector3d& gravity, double top_mass = 0.0);
+
+  double length() const { return L_; }
+  double massPerLength() const { return mu_; }
+  double axialStiffness() const { return EA_; }
+  double endMass() const { return end_mass_; }
+  double topMass() const { return top_mass_; }
+  const Eigen::Vector3d& gravity() const { return g_; }
+  const Matrix6& massMatrix() const { return M_; }
+  const Vector6& gravityForce() const { return Fg_; }
+
+  /// Hoisting: the unstretched length becomes `length`, M and F_g are rebuilt (rope mass
+  /// mu L exactly); the geometry q is kept. Throws std::invalid_argument for length <= 0.
+  void setLength(double length);
+
+  /// T = EA (l - L) / L, or 0 when slack [N].
+  double tension(const Vector6& q) const;
+  /// Q(q); the tangent K(q) into *K when given.
+  void elasticForce(const Vector6& q, Vector6& Q, Matrix6* K = nullptr) const;
+  /// Axial damping force Q_d(q, v) with coefficient c [s]; dQ_d/dv into *C when given.
+  void dampingForce(double c, const Vector6& q, const Vector6& v, Vector6& Q,
+                    Matrix6* C = nullptr) const;
+  double elasticEnergy(const Vector6& q) const;
+  /// The straight rope from `top` along the unit vector d with length l [m].
+  static Vector6 straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d, double l);
+
+ private:
+  double L_, mu_, EA_, end_mass_, top_mass_;
+  Eigen::Vector3d g_;
+  Matrix6 M_;
+  Vector6 Fg_;
+};
+
+}  // namespace crane_twin
