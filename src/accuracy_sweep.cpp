@@ -63,7 +63,8 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
       quick ? std::vector<double>{0.001, 0.01}
             : std::vector<double>{0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1};
   for (double dt : fullSteps) {
-    g.push_back({"full", {"rope.model=full", "time_step=" + num(dt)}, dt, 0, 0.0, scene.structure_modes});
+    g.push_back({"full", {"rope.model=full", "time_step=" + num(dt)}, dt, 0, 0.0,
+                 scene.structure_modes, scene.structure_model});
   }
   const std::vector<int> modes = quick ? std::vector<int>{10} : std::vector<int>{6, 10, 20};
   const std::vector<double> deltas = quick ? std::vector<double>{0.05, 0.5} : std::vector<double>{0.05, 0.2, 0.5};
@@ -74,7 +75,7 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
         g.push_back({"reduced",
                      {"rope.model=reduced", "rope.mode_count=" + std::to_string(m),
                       "rope.subdomain_delta=" + num(d), "time_step=" + num(dt)},
-                     dt, m, d, scene.structure_modes});
+                     dt, m, d, scene.structure_modes, scene.structure_model});
       }
   if (!quick) {
     // The paper's setting: half of the rope DOF, the scene's delta and step.
@@ -85,13 +86,35 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
                  {"rope.model=reduced", "rope.mode_count=0", "rope.mode_fraction=0.5",
                   "time_step=" + num(scene.time_step)},
                  scene.time_step, keptRopeModes(half), scene.rope.subdomain_delta,
-                 scene.structure_modes});
+                 scene.structure_modes, scene.structure_model});
     if (scene.crane && scene.structure_model == "modal") {
       g.push_back({"reduced",
                    {"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_delta=0.2",
                     "time_step=0.005", "structure.modes=20"},
-                   0.005, 10, 0.2, 20});
+                   0.005, 10, 0.2, 20, "modal"});
     }
+  }
+  // The fidelity ladder: the pendulum rope, and the rigid structure under each rope model.
+  auto pendulum = [&](double dt, int structureModes, const std::string& structure) {
+    std::vector<std::string> o = {"rope.model=pendulum", "time_step=" + num(dt),
+                                  "structure.model=" + structure};
+    if (structure != "rigid") o.push_back("structure.modes=" + std::to_string(structureModes));
+    g.push_back({"pendulum", o, dt, 0, 0.0, structure == "rigid" ? 0 : structureModes, structure});
+  };
+  const bool flexible = scene.crane && scene.structure_model != "rigid";
+  for (double dt : quick ? std::vector<double>{0.01} : std::vector<double>{0.001, 0.01, 0.05}) {
+    pendulum(dt, scene.structure_modes, scene.structure_model);
+  }
+  if (!quick && flexible) {
+    if (scene.structure_model == "modal") pendulum(0.01, 20, "modal");
+    pendulum(0.001, 0, "rigid");
+    pendulum(0.01, 0, "rigid");
+    g.push_back({"full", {"rope.model=full", "time_step=0.01", "structure.model=rigid"}, 0.01, 0,
+                 0.0, 0, "rigid"});
+    g.push_back({"reduced",
+                 {"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_delta=0.2",
+                  "time_step=0.005", "structure.model=rigid"},
+                 0.005, 10, 0.2, 0, "rigid"});
   }
   return g;
 }
@@ -111,7 +134,8 @@ std::vector<SweepResult> runSweep(const std::string& scene_file,
   };
   const CraneModel refModel = modelWith({"rope.model=full", "time_step=" + num(reference_dt)});
   SweepResult ref;
-  ref.setting = {"reference", {}, reference_dt, 0, 0.0, refModel.scene.structure_modes};
+  ref.setting = {"reference", {}, reference_dt, 0, 0.0, refModel.scene.structure_modes,
+                 refModel.scene.structure_model};
   const Trajectory reference = recordRun(refModel, interval, &ref.wall_s);
   ref.rtf = refModel.scene.duration / ref.wall_s;
   std::vector<SweepResult> out{ref};
@@ -136,7 +160,8 @@ std::vector<SweepResult> runSweep(const std::string& scene_file,
 
 const char* const kSweepHeader =
     "scene,model,time_step,rope_modes,delta,structure_modes,wall_s,rtf,subdomains,"
-    "mode_updates_s,payload_error_max,rope_rms_max,cab_error_max,jib_tip_error_max";
+    "mode_updates_s,payload_error_max,rope_rms_max,cab_error_max,jib_tip_error_max,"
+    "structure_model";
 
 std::string sweepRow(const std::string& scene, const SweepResult& r) {
   std::ostringstream s;
@@ -145,7 +170,7 @@ std::string sweepRow(const std::string& scene, const SweepResult& r) {
   s << scene << ',' << c.model << ',' << c.time_step << ',' << c.rope_modes << ',' << c.delta << ','
     << c.structure_modes << ',' << r.wall_s << ',' << r.rtf << ',' << r.subdomains << ','
     << r.mode_updates_s << ',' << r.error.payload_max << ',' << r.error.rope_rms_max << ','
-    << r.error.cab_max << ',' << r.error.jib_tip_max;
+    << r.error.cab_max << ',' << r.error.jib_tip_max << ',' << c.structure_model;
   return s.str();
 }
 

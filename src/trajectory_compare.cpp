@@ -106,6 +106,22 @@ Trajectory readTrajectory(const std::string& series_csv, const std::string& node
   return tr;
 }
 
+std::vector<Eigen::Vector3d> resampleRope(const std::vector<Eigen::Vector3d>& nodes, std::size_t n) {
+  if (nodes.size() < 2 || n < 2) {
+    throw InputError("a rope needs at least 2 nodes to compare, got " + std::to_string(nodes.size()) +
+                     " and " + std::to_string(n));
+  }
+  std::vector<Eigen::Vector3d> out(n);
+  const double last = static_cast<double>(nodes.size() - 1);
+  for (std::size_t j = 0; j < n; ++j) {
+    const double x = last * static_cast<double>(j) / static_cast<double>(n - 1);  // coarse index
+    const std::size_t k = std::min(static_cast<std::size_t>(x), nodes.size() - 2);
+    const double w = x - static_cast<double>(k);
+    out[j] = (1.0 - w) * nodes[k] + w * nodes[k + 1];
+  }
+  return out;
+}
+
 ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b) {
   std::map<long, std::size_t> bIndex;
   for (std::size_t i = 0; i < b.t.size(); ++i) bIndex[std::lround(b.t[i] * 1e9)] = i;
@@ -121,13 +137,12 @@ ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b) {
     m.cab_max = std::max(m.cab_max, (a.cab[i] - b.cab[j]).norm());
     m.jib_tip_max = std::max(m.jib_tip_max, (a.jib_tip[i] - b.jib_tip[j]).norm());
     if (withNodes) {
-      if (a.nodes[i].size() != b.nodes[j].size() || a.nodes[i].empty()) {
-        throw InputError("rope node counts differ (" + std::to_string(a.nodes[i].size()) + " and " +
-                         std::to_string(b.nodes[j].size()) + "): the RMS error needs the same mesh");
-      }
+      const std::size_t n = std::max(a.nodes[i].size(), b.nodes[j].size());
+      const auto ra = a.nodes[i].size() == n ? a.nodes[i] : resampleRope(a.nodes[i], n);
+      const auto rb = b.nodes[j].size() == n ? b.nodes[j] : resampleRope(b.nodes[j], n);
       double s = 0.0;
-      for (std::size_t k = 0; k < a.nodes[i].size(); ++k) s += (a.nodes[i][k] - b.nodes[j][k]).squaredNorm();
-      m.rope_rms_max = std::max(m.rope_rms_max, std::sqrt(s / a.nodes[i].size()));
+      for (std::size_t k = 0; k < n; ++k) s += (ra[k] - rb[k]).squaredNorm();
+      m.rope_rms_max = std::max(m.rope_rms_max, std::sqrt(s / n));
     }
   }
   if (m.common_times == 0) throw InputError("the two runs share no output time");

@@ -327,7 +327,8 @@ TEST(CraneSimCli, QuickSweepWritesOneRowPerSetting) {
     EXPECT_EQ(row.find("nan"), std::string::npos) << row;
   }
   EXPECT_EQ(reference, 1);
-  EXPECT_EQ(rows, 1 + 2 + 4);  // reference, full at 1 and 10 ms, reduced 10 modes x 2 deltas x 2 steps
+  // reference, full at 1 and 10 ms, reduced 10 modes x 2 deltas x 2 steps, pendulum at 10 ms
+  EXPECT_EQ(rows, 1 + 2 + 4 + 1);
 }
 
 TEST(CraneSimCli, PhysicalWarningsReachTheCsvAndStderr) {

@@ -12,6 +12,7 @@
 #include "crane_twin/crane_simulation.hpp"
 #include "crane_twin/crane_snapshot.hpp"
 #include "crane_twin/pendulum_crane_simulation.hpp"
+#include "crane_twin/trajectory_compare.hpp"
 
 using namespace crane_twin;
 
@@ -277,4 +278,23 @@ TEST(PendulumRope, MakeSimulationBuildsNoAncfRope) {
   EXPECT_NE(dynamic_cast<PendulumCraneSimulation*>(sim.get()), nullptr);
   sim->initialize();
   EXPECT_EQ(sim->ropeNodes(), 2);
+}
+
+TEST(ResampleRope, InterpolatesAlongTheMaterialCoordinate) {
+  // A 2-node chord against a 5-node straight rope on the same line: no RMS error; shifted by
+  // the chord's end moved 0.1 m sideways: the RMS of a linear ramp 0, 0.025, ..., 0.1.
+  const std::vector<Eigen::Vector3d> chord = {{0, 0, 0}, {0, 0, -60}};
+  const auto fine = resampleRope(chord, 5);
+  ASSERT_EQ(fine.size(), 5u);
+  for (int j = 0; j < 5; ++j) EXPECT_LT((fine[j] - Eigen::Vector3d(0, 0, -15.0 * j)).norm(), 1e-12);
+  Trajectory a, b;
+  a.t = b.t = {0.0};
+  a.payload = b.payload = a.cab = b.cab = a.jib_tip = b.jib_tip = {Eigen::Vector3d::Zero()};
+  a.nodes = {chord};
+  b.nodes = {fine};
+  a.nodes[0][1].x() += 0.1;
+  const ErrorMetrics m = compareTrajectories(a, b);
+  const double expected = std::sqrt((0.025 * 0.025 + 0.05 * 0.05 + 0.075 * 0.075 + 0.01) / 5);
+  EXPECT_NEAR(m.rope_rms_max, expected, 1e-12);
+  EXPECT_THROW(resampleRope({{0, 0, 0}}, 5), InputError);
 }

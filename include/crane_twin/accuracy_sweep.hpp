@@ -14,12 +14,13 @@ namespace crane_twin {
 
 /// One setting of the sweep: the model and the scene overrides that make it.
 struct SweepCase {
-  std::string model;                 ///< "full" or "reduced"
+  std::string model;                 ///< rope model: "pendulum", "full" or "reduced"
   std::vector<std::string> overrides;
   double time_step = 0.0;
   int rope_modes = 0;                ///< reduced: kept fixed-top modes
   double delta = 0.0;                ///< reduced: subdomain delta [m]
   int structure_modes = 0;
+  std::string structure_model = "modal";  ///< rigid | modal | full (the fidelity ladder)
 };
 
 struct SweepResult {
@@ -38,7 +39,10 @@ Trajectory recordRun(const CraneModel& model, double interval, double* wall_s = 
 
 /// The grid of SPEC 5 for a scene: full at 1, 2, 5, 10, 20, 50, 100 ms; reduced at 6, 10, 20 modes x
 /// delta 0.05, 0.2, 0.5 m x 1, 5, 10 ms, plus the paper's point (mode_fraction 0.5, the
-/// scene's delta and step) and 20 structure modes at one reduced setting. `quick` keeps a few.
+/// scene's delta and step) and 20 structure modes at one reduced setting; and the fidelity
+/// ladder (SPEC 2, issue 7): the pendulum rope at 1, 10 and 50 ms with the scene's structure,
+/// at 10 ms with 20 structure modes, and the rigid structure under the pendulum (1 and 10 ms),
+/// the full rope (10 ms) and the reduced rope (10 modes, 0.2 m, 5 ms). `quick` keeps a few.
 std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick);
 
 /// Run the reference (full order at `reference_dt`) and every case. `progress` is told each

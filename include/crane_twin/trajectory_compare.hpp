@@ -27,8 +27,16 @@ struct ErrorMetrics {
 };
 
 /// Metrics at the times both trajectories share (matched to 1e-9 s). Throws InputError when
-/// they share none or their node counts differ.
+/// they share none. Ropes of different meshes (a pendulum's 2 nodes against an ANCF rope's n,
+/// or two element counts): both meshes are uniform in the unstretched arc length, so the
+/// coarser rope is interpolated linearly between its nodes at the finer one's material points
+/// s_j = j / (n - 1) and the RMS runs over the finer rope's n nodes. Exact for the pendulum
+/// (a straight bar); for a coarse ANCF rope it leaves out the curvature between its nodes.
 ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b);
+
+/// The rope `nodes` (uniform in material coordinate) interpolated linearly at n uniform
+/// material points. Throws InputError for fewer than 2 nodes or n < 2.
+std::vector<Eigen::Vector3d> resampleRope(const std::vector<Eigen::Vector3d>& nodes, std::size_t n);
 
 /// Read a SPEC 3.1 time-series CSV (and optionally its nodes CSV). Throws InputError naming the
 /// file, line and column for a missing column, a malformed number or a ragged row.
