@@ -79,6 +79,11 @@ TEST(CraneSimCli, InfoSaysWhatARunIntegrates) {
   EXPECT_NE(r.out.find("rope_bending,off\n"), std::string::npos);
   EXPECT_NE(r.out.find("rope_damping_s,0.01\n"), std::string::npos);
   EXPECT_NE(r.out.find("structural_damping_ratio,0\n"), std::string::npos);
+  // The pendulum integrates its two end points and cannot bend.
+  r = run("info " + kScene + " --set rope.model=pendulum");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find("integrated_rope_coordinates,6\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rope_bending,off\n"), std::string::npos);
 }
 
 TEST(CraneSimCli, StructureModesFormat) {
@@ -154,19 +159,21 @@ TEST(CraneSimCli, RunWritesSpecColumnsAndSummary) {
 }
 
 TEST(CraneSimCli, StaticPrintsKeys) {
-  const Result r = run("static " + kRope);
-  ASSERT_EQ(r.status, 0) << r.out;
-  EXPECT_EQ(r.out.rfind("payload_x,", 0), 0u) << r.out;
-  for (const char* k : {"payload_y,", "payload_z,", "rope_top_tension,", "jib_tip_dz,",
-                        "cab_dx,"}) {
-    EXPECT_NE(r.out.find(std::string("\n") + k), std::string::npos) << k << "\n" << r.out;
+  for (const char* model : {"full", "pendulum"}) {
+    const Result r = run("static " + kRope + " --set rope.model=" + model);
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_EQ(r.out.rfind("payload_x,", 0), 0u) << r.out;
+    for (const char* k : {"payload_y,", "payload_z,", "rope_top_tension,", "jib_tip_dz,",
+                          "cab_dx,"}) {
+      EXPECT_NE(r.out.find(std::string("\n") + k), std::string::npos) << k << "\n" << r.out;
+    }
   }
 }
 
 TEST(CraneSimCli, UnbuiltCombinationsAreRefusedClearly) {
-  Result r = run("run " + kRope + " --set rope.model=pendulum --quiet");
+  Result r = run("run " + kRope + " --set rope.model=reduced --set rope.damping=0.01 --quiet");
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.out.find("rope.model"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("rope.damping"), std::string::npos) << r.out;
   r = run("run " + kRope + " --out /nonexistent/dir/x.csv --quiet");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.out.find("--out"), std::string::npos) << r.out;
