@@ -12,6 +12,11 @@ namespace crane_twin {
 
 std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
   const Scene& sc = model.scene;
+  if (sc.slew_inertial_loads && (!model.structure || sc.structure_model == "rigid")) {
+    throw InputError(sc.file + ": key 'slewing.inertial_loads': the inertial loads of slewing act "
+                     "on a flexible structure (structure.model: modal or full); this scene has " +
+                     (model.structure ? std::string("a rigid one") : std::string("none (crane: none)")));
+  }
   if (!model.structure) return std::make_unique<FixedAnchor>(sc.anchor);
   const TowerCraneStructure& st = *model.structure;
   const double theta = sc.slew_angle;
@@ -27,16 +32,20 @@ std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
   opt.count = sc.structure_modes;
   const ModalBasis b = lowestModes(st.K, st.M, opt);
   if (sc.structure_model == "modal") {
-    return std::make_unique<ModalStructureSupport>(st, b, sc.structure_damping_ratio,
-                                                   sc.trolley_radius, theta);
+    auto modal = std::make_unique<ModalStructureSupport>(st, b, sc.structure_damping_ratio,
+                                                         sc.trolley_radius, theta);
+    if (sc.slew_inertial_loads) modal->enableSlewingLoads();
+    return modal;
   }
   // full: Rayleigh damping matched at the first and the structure.modes-th frequency (a single
   // mode gives no second frequency: match at 10 w1 then).
   const double w1 = std::sqrt(b.omega2(0));
   const double wk = b.omega2.size() > 1 ? std::sqrt(b.omega2(b.omega2.size() - 1)) : 10.0 * w1;
-  return std::make_unique<FullStructureSupport>(st, sc.structure_damping_ratio, w1,
-                                                wk > w1 ? wk : 10.0 * w1, sc.trolley_radius,
-                                                theta);
+  auto full = std::make_unique<FullStructureSupport>(st, sc.structure_damping_ratio, w1,
+                                                     wk > w1 ? wk : 10.0 * w1, sc.trolley_radius,
+                                                     theta);
+  if (sc.slew_inertial_loads) full->enableSlewingLoads();
+  return full;
 }
 
 CraneSimulation::CraneSimulation(const CraneModel& m) : model_(m), drives_(model_.scene) {
@@ -46,9 +55,6 @@ CraneSimulation::CraneSimulation(const CraneModel& m) : model_(m), drives_(model
   if (sc.rope.model == "pendulum") {
     throw InputError(sc.file + ": key 'rope.model': the ANCF rope cannot run a pendulum scene "
                      "(makeSimulation builds PendulumCraneSimulation for it)");
-  }
-  if (sc.slew_inertial_loads) {
-    throw InputError(sc.file + ": key 'slewing.inertial_loads': the inertial loads of slewing on the structure are not built yet");
   }
   const double trolleyMass = sc.crane ? sc.crane->trolley_mass : 0.0;
   rope_ = std::make_unique<AncfRope>(sc.rope.elements, sc.rope.length,
@@ -76,10 +82,13 @@ void CraneSimulation::resetDrives() {
     solver_->refreshMass();
   }
   support_->setPose(sc.slew_angle, sc.trolley_radius);
+  support_->setSlewMotion(0.0, 0.0);
 }
 
 void CraneSimulation::advanceDrives(double t, double dt) {
-  if (drives_.advance(t, dt)) support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
+  if (!drives_.advance(t, dt)) return;
+  support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
+  support_->setSlewMotion(drives_.slewRate(), drives_.slewAcceleration());
 }
 
 // Hoisting by uniform rescaling (docs/model.md): the new reference length is spread over all

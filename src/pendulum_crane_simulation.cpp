@@ -10,9 +10,6 @@ namespace crane_twin {
 PendulumCraneSimulation::PendulumCraneSimulation(const CraneModel& m)
     : model_(m), drives_(model_.scene) {
   const Scene& sc = model_.scene;
-  if (sc.slew_inertial_loads) {
-    throw InputError(sc.file + ": key 'slewing.inertial_loads': the inertial loads of slewing on the structure are not built yet");
-  }
   const double trolleyMass = sc.crane ? sc.crane->trolley_mass : 0.0;
   rope_ = std::make_unique<PendulumRope>(sc.rope.length, model_.rope.mass_per_length,
                                          model_.rope.axial_stiffness, model_.end_mass,
@@ -34,6 +31,7 @@ void PendulumCraneSimulation::initialize() {
   drives_.reset();
   rope_->setLength(sc.rope.length);
   support_->setPose(sc.slew_angle, sc.trolley_radius);
+  support_->setSlewMotion(0.0, 0.0);
   const double th = sc.swing_deg * M_PI / 180.0, az = sc.swing_azimuth_deg * M_PI / 180.0;
   if (sc.initial_mode == "stress_free") {
     const Eigen::Vector3d d(std::sin(th) * std::cos(az), std::sin(th) * std::sin(az),
@@ -54,6 +52,7 @@ void PendulumCraneSimulation::initialize() {
 void PendulumCraneSimulation::step() {
   if (drives_.advance(state_.t, solver_->timeStep())) {
     support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
+    support_->setSlewMotion(drives_.slewRate(), drives_.slewAcceleration());
     if (drives_.hoistLength() != rope_->length()) rope_->setLength(drives_.hoistLength());
   }
   solver_->step(state_);

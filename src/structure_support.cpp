@@ -64,6 +64,47 @@ void StructureSupportBase::setPose(double theta, double radius) {
   ++pose_version_;
 }
 
+void slewingFields(const TowerCraneStructure& s, Eigen::VectorXd& r_theta, Eigen::VectorXd& c) {
+  std::vector<bool> turns(s.nodes.size(), false);
+  for (const StructureMember& m : s.members) {
+    if (m.group == "mast") continue;
+    turns[m.node1] = turns[m.node2] = true;
+  }
+  r_theta = Eigen::VectorXd::Zero(s.free_dofs);
+  c = Eigen::VectorXd::Zero(s.free_dofs);
+  for (std::size_t n = 0; n < s.nodes.size(); ++n) {
+    if (!turns[n]) continue;
+    const Eigen::Vector3d& X = s.nodes[n];
+    const double rt[6] = {-X.y(), X.x(), 0.0, 0.0, 0.0, 1.0};
+    const double cf[6] = {-X.x(), -X.y(), 0.0, 0.0, 0.0, 0.0};
+    for (int d = 0; d < 6; ++d) {
+      const int e = s.dof_equation[6 * n + d];
+      if (e < 0) continue;
+      r_theta(e) = rt[d];
+      c(e) = cf[d];
+    }
+  }
+}
+
+void StructureSupportBase::enableSlewingLoads() {
+  Eigen::VectorXd r, c;
+  slewingFields(structure_, r, c);
+  const Eigen::VectorXd Mr = structure_.M * r, Mc = structure_.M * c;
+  euler_ = modes_.size() > 0 ? Eigen::VectorXd(modes_.transpose() * Mr) : Mr;
+  centrifugal_ = modes_.size() > 0 ? Eigen::VectorXd(modes_.transpose() * Mc) : Mc;
+}
+
+void StructureSupportBase::setSlewMotion(double rate, double acceleration) {
+  slew_rate_ = rate;
+  slew_acceleration_ = acceleration;
+}
+
+// T^T f = -(theta'' T^T M r_theta + theta'^2 T^T M c).
+Eigen::VectorXd StructureSupportBase::slewingLoad() const {
+  if (euler_.size() == 0) return Eigen::VectorXd::Zero(size());
+  return -(slew_acceleration_ * euler_ + slew_rate_ * slew_rate_ * centrifugal_);
+}
+
 RigidTrolleySupport::RigidTrolleySupport(const TowerCraneStructure& s, double trolley_radius,
                                          double slew_angle)
     : FixedAnchor(Eigen::Vector3d::Zero()), structure_(s) {
@@ -92,7 +133,9 @@ ModalStructureSupport::ModalStructureSupport(const TowerCraneStructure& s, const
 Eigen::VectorXd ModalStructureSupport::internalForce(const Eigen::VectorXd& z,
                                                      const Eigen::VectorXd& zd,
                                                      const Eigen::VectorXd& zdd) const {
-  return zdd + damping_.cwiseProduct(zd) + omega2_.cwiseProduct(z);
+  Eigen::VectorXd f = zdd + damping_.cwiseProduct(zd) + omega2_.cwiseProduct(z);
+  if (slewingLoads()) f -= slewingLoad();
+  return f;
 }
 
 Eigen::Matrix3d ModalStructureSupport::setIterationWeights(double a, double c, double k) {
@@ -121,7 +164,9 @@ FullStructureSupport::FullStructureSupport(const TowerCraneStructure& s, double 
 Eigen::VectorXd FullStructureSupport::internalForce(const Eigen::VectorXd& z,
                                                     const Eigen::VectorXd& zd,
                                                     const Eigen::VectorXd& zdd) const {
-  return M_ * (zdd + alpha_ * zd) + K_ * (z + beta_ * zd);
+  Eigen::VectorXd f = M_ * (zdd + alpha_ * zd) + K_ * (z + beta_ * zd);
+  if (slewingLoads()) f -= slewingLoad();
+  return f;
 }
 
 Eigen::Matrix3d FullStructureSupport::setIterationWeights(double a, double c, double k) {

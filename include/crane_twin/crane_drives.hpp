@@ -41,6 +41,8 @@ class CraneDrives {
   double slewAngle() const { return slew_ ? slew_->position() : scene_.slew_angle; }
   double trolleyRadius() const { return trolley_ ? trolley_->position() : scene_.trolley_radius; }
   double slewRate() const { return slew_ ? slew_->speed() : 0.0; }
+  /// The slewing acceleration over the last step [rad/s^2].
+  double slewAcceleration() const { return slew_ ? slew_->acceleration() : 0.0; }
   double trolleySpeed() const { return trolley_ ? trolley_->speed() : 0.0; }
   double hoistSpeed() const { return hoist_ ? hoist_->speed() : 0.0; }
   /// The hoist drive's hanging length (the scene's length without a crane) [m].

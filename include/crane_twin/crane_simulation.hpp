@@ -24,8 +24,8 @@ class CraneSimulation final : public Simulation {
  public:
   /// Builds the rope and its support. Integrates at full order whatever rope.model says (the
   /// reduced model starts from this model's equilibrium and linearises it). Throws InputError
-  /// for what this version cannot run (pendulum rope, rope damping, slewing inertial loads,
-  /// drives without a crane), naming the key.
+  /// for what it cannot run (a pendulum scene, drives without a crane, slewing
+  /// loads without a flexible structure), naming the key.
   explicit CraneSimulation(const CraneModel& model);
 
   void initialize() override;

@@ -16,7 +16,7 @@ namespace crane_twin {
 
 class PendulumCraneSimulation final : public Simulation {
  public:
-  /// Throws InputError for what the pendulum cannot run (slewing inertial loads), naming the key.
+  /// Throws InputError for an inconsistent scene (makeRopeSupport), naming the key.
   explicit PendulumCraneSimulation(const CraneModel& model);
 
   void initialize() override;

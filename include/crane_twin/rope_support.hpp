@@ -30,7 +30,8 @@ class RopeSupport {
   virtual Eigen::Vector3d pointMotion(const Eigen::VectorXd& dz) const = 0;
   /// D^T f: generalised force of a point force f at the support point.
   virtual Eigen::VectorXd pointForceToCoordinates(const Eigen::Vector3d& f) const = 0;
-  /// M_z z'' + C_z z' + K_z z.
+  /// M_z z'' + C_z z' + K_z z - f_z(t), f_z the loads applied to the structure itself (the
+  /// inertial loads of slewing when switched on; see setSlewMotion).
   virtual Eigen::VectorXd internalForce(const Eigen::VectorXd& z, const Eigen::VectorXd& zd,
                                         const Eigen::VectorXd& zdd) const = 0;
   /// Factorise A_z = a M_z + c C_z + k K_z (cached: only refactorised when (a, c, k) change)
@@ -46,6 +47,10 @@ class RopeSupport {
   /// (SPEC 1.4). The constraint then holds the rope at the new point from the next step on
   /// (a rheonomic constraint). No effect on a fixed anchor.
   virtual void setPose(double /*theta*/, double /*radius*/) {}
+  /// Slewing rate theta' [rad/s] and acceleration theta'' [rad/s^2] of the step to come, for
+  /// the inertial loads of slewing on the structure (SPEC 1.4, `slewing.inertial_loads`;
+  /// StructureSupportBase). No effect on a support without structural coordinates.
+  virtual void setSlewMotion(double /*rate*/, double /*acceleration*/) {}
   /// Displacement of the cab and jib-tip reference points from the undeformed structure,
   /// slewing frame [m] (SPEC 3.1 cab_d*, jib_tip_d*); zero for an anchor.
   virtual Eigen::Vector3d cabDisplacement(const Eigen::VectorXd& z) const = 0;

@@ -15,6 +15,18 @@
 //   r_p = R(theta) (X_p(s) + B T z),  R(theta) the slewing rotation about z.
 // The trolley's own mass is not part of the structure: it rides on the rope's top node, which
 // coincides with the trolley point through the constraint.
+//
+// Inertial loads of slewing (`slewing.inertial_loads: true`, SPEC 1.4): in the slewing frame,
+// which turns with theta(t) about the tower axis z, every rotating node X (a node of the
+// slewing unit, jib, counter-jib or cab) accelerates with the frame by
+//   a(X) = theta'' e_z x X - theta'^2 (X_x, X_y, 0)        (Euler + centripetal),
+// and its rotation DOFs by theta'' e_z; as nodal fields, a = theta'' r_theta + theta'^2 c with
+// r_theta = [e_z x X; e_z] (the rigid slewing mode) and c = [-(X_x, X_y, 0); 0]. The
+// structure's equations gain the d'Alembert load  f = -M (theta'' r_theta + theta'^2 c),
+// T^T f in its coordinates. Neglected: the Coriolis load -2 theta' M (e_z x u') and the
+// centrifugal change of stiffness, both of order theta' times the small deformation (at the
+// 0.084 rad/s slewing limit, 2 theta' u' is under 1e-3 m/s^2 for u' < 5 mm/s); mast nodes do not
+// turn (their field is 0), so mast elements at the slewing ring share a partial load.
 #pragma once
 
 #include <Eigen/CholmodSupport>
@@ -31,6 +43,12 @@ namespace crane_twin {
 class StructureSupportBase : public RopeSupport {
  public:
   void setPose(double theta, double radius) override;
+  void setSlewMotion(double rate, double acceleration) override;
+  /// Switch the inertial loads of slewing on (builds T^T M r_theta and T^T M c once).
+  void enableSlewingLoads();
+  bool slewingLoads() const { return euler_.size() > 0; }
+  /// The d'Alembert load of slewing in the support's coordinates, T^T f (zero when off).
+  Eigen::VectorXd slewingLoad() const;
   Eigen::Vector3d point(const Eigen::VectorXd& z) const override { return r0_ + D_ * z; }
   Eigen::Vector3d pointMotion(const Eigen::VectorXd& dz) const override { return D_ * dz; }
   Eigen::VectorXd pointForceToCoordinates(const Eigen::Vector3d& f) const override {
@@ -57,7 +75,13 @@ class StructureSupportBase : public RopeSupport {
   int pose_version_ = 0;   ///< bumped by setPose (D changed)
   Eigen::Vector3d r0_;
   Eigen::Matrix<double, 3, Eigen::Dynamic> D_, cab_, tip_;
+  Eigen::VectorXd euler_, centrifugal_;  ///< T^T M r_theta, T^T M c (empty: loads off)
+  double slew_rate_ = 0.0, slew_acceleration_ = 0.0;
 };
+
+/// The free-DOF fields of the slewing frame's motion (see above): r_theta = [e_z x X; e_z] and
+/// c = [-(X_x, X_y, 0); 0] on the rotating nodes, 0 on the mast's.
+void slewingFields(const TowerCraneStructure& s, Eigen::VectorXd& r_theta, Eigen::VectorXd& c);
 
 class ModalStructureSupport final : public StructureSupportBase {
  public:
