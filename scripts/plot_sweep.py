@@ -2,9 +2,10 @@
 """Plot crane_sim sweep results: payload error against wall time, one panel per scene.
 
 Usage: scripts/plot_sweep.py OUT.png SWEEP.csv [SWEEP.csv ...]
-Full-order runs (time steps) and reduced runs (modes, delta, time step) are drawn with their
-Pareto fronts (no other setting of the same model is both faster and more accurate); the
-paper's setting (half the rope DOF) is starred. Needs Debian's python3-matplotlib.
+Full-order runs (time steps), reduced runs (modes, delta, time step) and the pendulum rope are
+drawn with their Pareto fronts (no other setting of the same model is both faster and more
+accurate); rungs on a rigid structure are crosses; the paper's setting (half the rope DOF) is
+starred. Needs Debian's python3-matplotlib.
 """
 import csv
 import sys
@@ -39,18 +40,25 @@ def main():
     floor = 1e-9
     for ax, (scene, rs) in zip(axes.flat, sorted(scenes.items())):
         ref = [r for r in rs if r["model"] == "reference"]
-        for model, colour, marker in (("full", "tab:blue", "o"), ("reduced", "tab:orange", "s")):
+        rigid = [r for r in rs if r.get("structure_model") == "rigid"]
+        if rigid:
+            ax.scatter([float(r["wall_s"]) for r in rigid],
+                       [max(float(r["payload_error_max"]), floor) for r in rigid], c="k",
+                       marker="x", s=30, label="rigid structure (any rope)")
+        for model, colour, marker in (("full", "tab:blue", "o"), ("reduced", "tab:orange", "s"),
+                                      ("pendulum", "tab:green", "^")):
             pts = [(float(r["wall_s"]), max(float(r["payload_error_max"]), floor), r)
-                   for r in rs if r["model"] == model]
+                   for r in rs if r["model"] == model and r.get("structure_model") != "rigid"]
             if not pts:
                 continue
+            label = "pendulum rope" if model == "pendulum" else f"{model} order"
             ax.scatter([p[0] for p in pts], [p[1] for p in pts], c=colour, marker=marker, s=22,
-                       alpha=0.6, label=f"{model} order")
+                       alpha=0.6, label=label)
             front = pareto([(p[0], p[1]) for p in pts])
             ax.plot([p[0] for p in front], [p[1] for p in front], c=colour, lw=1.5,
                     label=f"{model}: Pareto front")
             for w, e, r in pts:
-                if model == "full":
+                if model in ("full", "pendulum"):
                     ax.annotate(f"{float(r['time_step']) * 1e3:g} ms", (w, e), fontsize=7,
                                 xytext=(3, 3), textcoords="offset points")
                 elif int(r["rope_modes"]) > 100:

@@ -1,8 +1,10 @@
 #!/usr/bin/python3
 """Markdown tables from crane_sim sweep CSVs (docs/accuracy-vs-time.md).
 
-Usage: scripts/sweep_report.py [--headline] SWEEP.csv [SWEEP.csv ...]
+Usage: scripts/sweep_report.py [--headline | --ladder] SWEEP.csv [SWEEP.csv ...]
 --headline prints one table row per scene (docs/accuracy-vs-time.md's headline table).
+--ladder prints the fidelity ladder (issue 7): each rung's cost and error, cheapest first, and
+the cheapest rung within 1 mm and within the paper's 0.15 m.
 Per scene: every setting, then the headline ratios: the paper's point (half the rope DOF at the
 scene's step and delta) against full order at the same step; reduced against full at the same
 step (1 ms); and at equal accuracy, the fastest setting of each model whose max payload error is
@@ -10,6 +12,51 @@ at most 1 mm, plus the fastest reduced setting within 0.02 m.
 """
 import csv
 import sys
+
+
+def flexible(rows, model):
+    """Rows of one rope model on the scene's own structure (the ladder's rigid rungs apart)."""
+    return [r for r in rows if r["model"] == model and r.get("structure_model", "modal") != "rigid"]
+
+
+def rung(r):
+    s = r.get("structure_model", "modal")
+    st = "rigid structure" if s == "rigid" else f"{s} structure ({r['structure_modes']} modes)"
+    rope = {"pendulum": "pendulum rope", "full": "full ANCF rope"}.get(r["model"])
+    if rope is None:
+        rope = f"reduced rope ({r['rope_modes']} modes, delta {float(r['delta']):g} m)"
+    return f"{rope}, {st}"
+
+
+def ladder(paths):
+    for path in paths:
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+        ref = [r for r in rows if r["model"] == "reference"][0]
+        print(f"### {rows[0]['scene']}\n")
+        print(f"Reference: full order at {float(ref['time_step']) * 1e3:g} ms, {float(ref['wall_s']):.3g} s.\n")
+        print("| rung | step [ms] | wall [s] | rtf | payload error [m] | rope RMS error [m] | jib tip error [m] |")
+        print("| --- | --- | --- | --- | --- | --- | --- |")
+        pend = [r for r in rows if r["model"] == "pendulum" or r.get("structure_model") == "rigid"]
+        best = {}
+        for m in ("full", "reduced"):  # the fastest flexible setting of each model per accuracy
+            for lim in (1e-3, 0.15):
+                f = fastest(flexible(rows, m), lim)
+                if f:
+                    best[id(f)] = f
+        shown = pend + list(best.values())
+        for r in sorted(shown, key=lambda r: float(r["wall_s"])):
+            print(f"| {rung(r)} | {float(r['time_step']) * 1e3:g} | {float(r['wall_s']):.3g} | "
+                  f"{float(r['rtf']):.3g} | {float(r['payload_error_max']):.2e} | "
+                  f"{float(r['rope_rms_max']):.2e} | {float(r['jib_tip_error_max']):.2e} |")
+        cand = [r for r in rows if r["model"] != "reference"]
+        for lim, what in ((1e-3, "1 mm"), (0.15, "0.15 m")):
+            f = fastest(cand, lim)
+            if f:
+                print(f"\nCheapest within {what} payload error: {rung(f)} at "
+                      f"{float(f['time_step']) * 1e3:g} ms, {float(f['wall_s']):.3g} s "
+                      f"({float(ref['wall_s']) / float(f['wall_s']):.0f}x under the reference).")
+        print()
 
 
 def fastest(rows, limit):
@@ -29,8 +76,7 @@ def headline(paths):
         with open(path) as f:
             rows = list(csv.DictReader(f))
         sc = rows[0]["scene"]
-        full = [r for r in rows if r["model"] == "full"]
-        red = [r for r in rows if r["model"] == "reduced"]
+        full, red = flexible(rows, "full"), flexible(rows, "reduced")
         f1 = min(full, key=lambda r: float(r["time_step"]))
         w1 = float(f1["wall_s"])
         p = [r for r in red if int(r["rope_modes"]) > 100][0]
@@ -60,21 +106,25 @@ def main():
     if sys.argv[1] == "--headline":
         headline(sys.argv[2:])
         return
+    if sys.argv[1] == "--ladder":
+        ladder(sys.argv[2:])
+        return
     for path in sys.argv[1:]:
         with open(path) as f:
             rows = list(csv.DictReader(f))
         scene = rows[0]["scene"]
         print(f"### {scene}\n")
-        print("| model | step [ms] | rope modes | delta [m] | structure modes | wall [s] | rtf | "
+        print("| model | step [ms] | rope modes | delta [m] | structure | wall [s] | rtf | "
               "subdomains | mode updates [s] | payload error [m] | rope RMS error [m] |")
         print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
         for r in rows:
+            st = r.get("structure_model", "modal")
+            st = "rigid" if st == "rigid" else f"{st} {r['structure_modes']}"
             print(f"| {r['model']} | {float(r['time_step']) * 1e3:g} | {r['rope_modes']} | "
-                  f"{float(r['delta']):g} | {r['structure_modes']} | {float(r['wall_s']):.3g} | "
+                  f"{float(r['delta']):g} | {st} | {float(r['wall_s']):.3g} | "
                   f"{float(r['rtf']):.3g} | {r['subdomains']} | {float(r['mode_updates_s']):.3g} | "
                   f"{float(r['payload_error_max']):.2e} | {float(r['rope_rms_max']):.2e} |")
-        full = [r for r in rows if r["model"] == "full"]
-        red = [r for r in rows if r["model"] == "reduced"]
+        full, red = flexible(rows, "full"), flexible(rows, "reduced")
         step = min(float(r["time_step"]) for r in full)
         full1 = [r for r in full if float(r["time_step"]) == step][0]
         w1 = float(full1["wall_s"])
