@@ -54,13 +54,49 @@ Eigen::VectorXd ReducedOrderSolver::project(const Eigen::VectorXd& x) const {
   return w;
 }
 
-void ReducedOrderSolver::startSubdomain(const Eigen::VectorXd& e) {
+void ReducedOrderSolver::addStaticCorrection(const SparseMatrix& K, const SparseMatrix& M,
+                                             const Eigen::VectorXd& load) {
+  const int n = rope_.dofs();
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt(withoutTopPosition(K));
+  if (ldlt.info() != Eigen::Success) {
+    throw NumericalFailure(at(s_.t) + ": static correction: singular rope tangent");
+  }
+  Eigen::VectorXd psi = Eigen::VectorXd::Zero(n);
+  if (load.size() != n) throw std::invalid_argument("static correction: load of the wrong size");
+  psi.tail(n - 3) = ldlt.solve(Eigen::VectorXd(load.tail(n - 3)));
+  // M-orthogonal to the modes; skipped when the modes already span it.
+  const double before = std::sqrt(psi.dot(M * psi));
+  psi -= phi_ * (phi_.transpose() * (M * psi));
+  const double after = std::sqrt(psi.dot(M * psi));
+  if (!(after > 1e-8 * before) || !std::isfinite(after)) return;
+  psi /= after;
+  Eigen::MatrixXd B(n, phi_.cols() + 1);
+  B << phi_, psi;
+  phi_ = B;
+  ritz(K, M);
+  ++stats_.static_corrections;
+}
+
+void ReducedOrderSolver::ritz(const SparseMatrix& K, const SparseMatrix& M) {
+  const Eigen::MatrixXd Kr = phi_.transpose() * (K * phi_), Mr = phi_.transpose() * (M * phi_);
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(
+      0.5 * (Kr + Kr.transpose()), 0.5 * (Mr + Mr.transpose()));
+  if (es.info() != Eigen::Success) throw NumericalFailure(at(s_.t) + ": Rayleigh-Ritz failed");
+  phi_ = phi_ * es.eigenvectors();
+  omega2_ = es.eigenvalues();
+}
+
+void ReducedOrderSolver::startSubdomain(const Eigen::VectorXd& e, BasisUpdate how,
+                                        const Eigen::VectorXd& load) {
   const auto t0 = std::chrono::steady_clock::now();
   const int n = rope_.dofs();
   Eigen::VectorXd Q;
   const SparseMatrix K = rope_.tangentStiffness(e, &Q);
   const SparseMatrix& M = rope_.massMatrix();
-  if (modes_.phi.size() == 0 || settings_.update == ModeUpdate::cold) {
+  if (how == BasisUpdate::ritz && phi_.size() > 0) {
+    ritz(K, M);
+    ++stats_.ritz_updates;
+  } else if (modes_.phi.size() == 0 || settings_.update == ModeUpdate::cold) {
     if (modes_.phi.size() != 0) ++stats_.eigen_solves;
     modes_ = coldRopeModes(K, M, settings_.modes);
   } else {
@@ -72,9 +108,12 @@ void ReducedOrderSolver::startSubdomain(const Eigen::VectorXd& e) {
       modes_ = coldRopeModes(K, M, settings_.modes);
     }
   }
-  const int r = settings_.kept_modes;
-  phi_ = modes_.phi.leftCols(r);
-  omega2_ = modes_.omega2.head(r);
+  if (how != BasisUpdate::ritz || phi_.size() == 0) {
+    phi_ = modes_.phi.leftCols(settings_.kept_modes);
+    omega2_ = modes_.omega2.head(settings_.kept_modes);
+    if (how == BasisUpdate::modes_and_correction) addStaticCorrection(K, M, load);
+  }
+  const int r = static_cast<int>(phi_.cols());
   if (!phi_.allFinite() || !omega2_.allFinite()) {
     throw NumericalFailure(at(s_.t) + ": rope mode update gave non-finite modes");
   }
@@ -105,8 +144,10 @@ void ReducedOrderSolver::startSubdomain(const Eigen::VectorXd& e) {
   steps_in_subdomain_ = 0;
   G_step_.setConstant(std::nan(""));  // forces the step system's refactorisation
   ++stats_.subdomains;
-  stats_.max_mode_residual =
-      std::max(stats_.max_mode_residual, ropeModeResidual(K, M, modes_, settings_.modes.shift));
+  if (how != BasisUpdate::ritz) {  // a Ritz block is not the modes of this K
+    stats_.max_mode_residual =
+        std::max(stats_.max_mode_residual, ropeModeResidual(K, M, modes_, settings_.modes.shift));
+  }
   stats_.mode_update_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -179,7 +220,7 @@ void ReducedOrderSolver::initialize(const CoupledState& full) {
   // The first basis is model setup (like the structure's modes), not a mode update.
   stats_.setup_mode_seconds = stats_.mode_update_seconds;
   stats_.mode_update_seconds = 0.0;
-  const int r = settings_.kept_modes;
+  const int r = static_cast<int>(phi_.cols());
   s_.y = Eigen::VectorXd::Zero(r + 3);
   s_.yd = project(full.v);
   s_.z = full.z.size() == support_.size() ? full.z : Eigen::VectorXd::Zero(support_.size());
@@ -246,13 +287,16 @@ void ReducedOrderSolver::step() {
   }
 }
 
-void ReducedOrderSolver::restartAt(const CoupledState& f, bool consistent_accelerations) {
-  const int r = settings_.kept_modes;
+void ReducedOrderSolver::restartAt(const CoupledState& f, bool consistent_accelerations,
+                                   BasisUpdate how, const Eigen::VectorXd& load) {
   try {
-    startSubdomain(f.q);
+    startSubdomain(f.q, how, load);
+  } catch (const NumericalFailure&) {
+    throw;
   } catch (const std::runtime_error& ex) {
     throw NumericalFailure(at(s_.t) + ": rope mode update failed: " + ex.what());
   }
+  const int r = static_cast<int>(phi_.cols());
   s_.t = f.t;  // f may come from the full-order solver (a slack episode), not from s_
   s_.z = f.z;
   s_.zd = f.zd;

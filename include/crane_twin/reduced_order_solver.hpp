@@ -24,6 +24,20 @@
 // exactly (y = 0 at the new e_m), velocities and the generalized-alpha accelerations by the
 // M-orthogonal projection onto the new basis, M_r w = B^T M x. The projection can only lose
 // kinetic energy; the loss 1/2 (v^T M v - w^T M_r w) is summed in `projectionEnergyLoss`.
+//
+// Hoisting (issue 5): the full model's scheme, uniform rescaling (CraneSimulation::
+// applyRopeLength), applied to the expanded state, then a new subdomain at it (every length
+// change starts one). The fixed-top modes lack the shape a length change asks for: the rope's
+// stretch along its length (a truncated basis can only represent it through the modes that
+// happen to carry axial motion, and the projection at each switch then throws the winch's
+// velocity field away). Such a subdomain gets a static-correction vector: psi solves
+// K_ii psi = -dQ_i with the top position held, dQ = Q(e; L_new) - Q(e; L_old) the change of the
+// elastic force the length change made at the rescaled state (the static response to the force
+// it left unbalanced), M-orthogonalised against the modes, and a Rayleigh-Ritz
+// step on [Phi_c psi] keeps the reduced stiffness diagonal. A length change of a millimetre
+// hardly changes the rope's modes, so between such full updates a hoisting subdomain keeps the
+// previous block [Phi_c psi] and only re-linearises: Rayleigh-Ritz of the block with the new
+// K_m and M (BasisUpdate::ritz), which keeps Phi^T M Phi = I and Phi^T K_m Phi diagonal.
 #pragma once
 
 #include <chrono>
@@ -65,6 +79,8 @@ struct ReducedStatistics {
   double max_mode_residual = 0.0;  ///< worst relative residual of a kept mode after an update
   int cold_fallbacks = 0;          ///< warm updates that had to fall back to a cold solve
   int eigen_solves = 0;            ///< mode computations after the first (warm or cold)
+  int static_corrections = 0;      ///< subdomains given a static-correction vector (hoisting)
+  int ritz_updates = 0;            ///< subdomains that only re-linearised their block (hoisting)
 };
 
 class ReducedOrderSolver {
@@ -82,7 +98,12 @@ class ReducedOrderSolver {
   /// Start a new subdomain at a full-coordinate state (the rope's positions, velocities and
   /// generalized-alpha accelerations; z and lambda stay): what a switch does, also used when
   /// the rope's length changed under it (hoisting).
-  void restartAt(const CoupledState& full, bool consistent_accelerations = false);
+  /// How a new subdomain renews its basis (header): the modes (warm or cold, per settings);
+  /// the modes plus the static-correction vector; or Rayleigh-Ritz of the current block.
+  enum class BasisUpdate { modes, modes_and_correction, ritz };
+  /// `load` is the force the static correction responds to (-dQ, header).
+  void restartAt(const CoupledState& full, bool consistent_accelerations = false,
+                 BasisUpdate how = BasisUpdate::modes, const Eigen::VectorXd& load = {});
 
   const ReducedState& state() const { return s_; }
   const ReducedStatistics& statistics() const { return stats_; }
@@ -99,7 +120,12 @@ class ReducedOrderSolver {
   double topTension() const;
 
  private:
-  void startSubdomain(const Eigen::VectorXd& e);
+  void startSubdomain(const Eigen::VectorXd& e, BasisUpdate how = BasisUpdate::modes,
+                      const Eigen::VectorXd& load = {});
+  // phi_ <- phi_ X with B^T K B X = B^T M B X diag(omega2), B = phi_ (Rayleigh-Ritz).
+  void ritz(const SparseMatrix& K, const SparseMatrix& M);
+  // Append psi = K_ii^-1 load_i to phi_ and Rayleigh-Ritz the block (header).
+  void addStaticCorrection(const SparseMatrix& K, const SparseMatrix& M, const Eigen::VectorXd& load);
   // Project a full rope vector x onto the basis (M-orthogonal): solves M_r w = B^T M x.
   Eigen::VectorXd project(const Eigen::VectorXd& x) const;
   Eigen::VectorXd expand(const Eigen::VectorXd& y) const;  // Phi_c p_c + T u_b
