@@ -25,6 +25,7 @@ run emergency_stop_slew hard_emergency_stop_slew.yaml
 run emergency_stop_slew_reduced hard_emergency_stop_slew.yaml --set rope.model=reduced --set rope.mode_count=10
 run emergency_stop_trolley hard_emergency_stop_trolley.yaml
 run hoist_60_3_60 hard_hoist_60_3_60.yaml
+run hoist_60_3_60_reduced hard_hoist_60_3_60.yaml --set rope.model=reduced --set rope.mode_count=10
 run one_hour_undamped hard_one_hour_undamped.yaml
 run large_step hard_large_step.yaml
 run large_step_reduced hard_large_step.yaml --set rope.model=reduced --set rope.mode_count=10

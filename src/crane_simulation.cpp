@@ -126,6 +126,10 @@ void CraneSimulation::initialize() { state_ = initialState(); }
 
 void CraneSimulation::step() {
   advanceDrives(state_.t, solver_->timeStep());
+  stepAfterDrives();
+}
+
+void CraneSimulation::stepAfterDrives() {
   applyRopeLength(state_);
   solver_->step(state_);
 }

@@ -55,6 +55,7 @@ void ReducedCraneSimulation::initialize() {
   full_order_ = false;
   full_order_steps_ = 0;
   slack_episodes_ = 0;
+  fast_hoist_episodes_ = 0;
   solver_->initialize(full_.initialState());
   basis_length_ = -1.0;  // the first hoisting step renews the basis
   hoist_subdomain_ = -1;
@@ -72,18 +73,32 @@ void ReducedCraneSimulation::step() {
     const Eigen::VectorXd& q = full_.state().q;
     double least = 1e300;
     for (int j = 0; j < full_.ropeNodes(); ++j) least = std::min(least, q.segment<3>(6 * j + 3).norm() - 1.0);
+    // A slack episode while the hoist moves stays at full order until it stops (the length
+    // changes every step then; measured in docs/model.md).
     if (least > kTautFraction * end_strain_ &&
-        full_.series().rope_top_tension > kTautTensionFraction * weight_) {
+        full_.series().rope_top_tension > kTautTensionFraction * weight_ &&
+        full_.drives().hoistSpeed() == 0.0) {
       solver_->restartAt(full_.state(), true);
       full_order_ = false;
     }
     return;
   }
   full_.advanceDrives(solver_->state().t, full_.solver().timeStep());
-  if (full_.drives().hoistLength() != full_.ropeLength()) {
+  const double length = full_.drives().hoistLength(), from = full_.ropeLength();
+  if (length != from && std::abs(length - from) > kHoistStepStrain * end_strain_ * from) {
+    // A length change per step that is not small against the rope's static stretch: the
+    // rescaled rope is far from any linearisation. Full order until the hoist stops.
+    full_.setState(solver_->fullState());
+    full_.stepAfterDrives();
+    full_order_ = true;
+    ++full_order_steps_;
+    ++fast_hoist_episodes_;
+    return;
+  }
+  if (length != from) {
     // Hoisting: the full model's rescaling on the expanded state, then a new subdomain: modes
-    // and the static-correction vector every kHoistBasisLength of length change, Rayleigh-Ritz
-    // of that block in between (ReducedOrderSolver header).
+    // and the static-correction vector after a relative length change of kHoistBasisStrain,
+    // Rayleigh-Ritz of that block in between (ReducedOrderSolver header).
     CoupledState f = solver_->fullState();
     Eigen::VectorXd before, after;
     full_.rope().elasticForce(f.q, before);
@@ -92,7 +107,7 @@ void ReducedCraneSimulation::step() {
     // The block must be the last hoisting subdomain's (a subdomain started since, by the
     // displacement criterion, a slack episode or at rest, has no static correction).
     const bool renew = solver_->statistics().subdomains != hoist_subdomain_ ||
-                       !(std::abs(full_.ropeLength() - basis_length_) < kHoistBasisLength);
+                       !(std::abs(full_.ropeLength() - basis_length_) < kHoistBasisStrain * full_.ropeLength());
     solver_->restartAt(f, false, renew ? ReducedOrderSolver::BasisUpdate::modes_and_correction
                                        : ReducedOrderSolver::BasisUpdate::ritz,
                        Eigen::VectorXd(before - after));

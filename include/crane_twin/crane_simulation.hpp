@@ -57,6 +57,8 @@ class CraneSimulation final : public Simulation {
   /// Advance the drives by dt under the active command and move the support (called before a
   /// step by either model).
   void advanceDrives(double t, double dt);
+  /// The step once the drives have advanced: the rope to the hoist length, one solver step.
+  void stepAfterDrives();
   /// Bring the rope to the hoist drive's length, rescaling a full-coordinate state with it.
   void applyRopeLength(CoupledState& s);
 
