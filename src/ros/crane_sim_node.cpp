@@ -104,9 +104,11 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   command_sub_ = nh_.subscribe("crane/command", 20, &CraneSimNode::onCommand, this);
   reset_srv_ = pnh_.advertiseService("reset", &CraneSimNode::onReset, this);
   pause_srv_ = pnh_.advertiseService("pause", &CraneSimNode::onPause, this);
-  ROS_INFO("crane_sim_node: scene %s, rope model %s, %d rope elements, time step %g s, "
+  const bool ancf = model_.scene.rope.model != "pendulum";
+  ROS_INFO("crane_sim_node: scene %s, rope model %s%s%s, time step %g s, "
            "real_time_factor %g%s%s",
-           settings_.scene.c_str(), model_.scene.rope.model.c_str(), model_.scene.rope.elements,
+           settings_.scene.c_str(), model_.scene.rope.model.c_str(), ancf ? ", rope elements " : "",
+           ancf ? std::to_string(model_.scene.rope.elements).c_str() : "",
            model_.scene.time_step, settings_.real_time_factor,
            settings_.publish_clock ? ", publishing /clock" : "",
            settings_.command_bag.empty() ? "" : ", replaying commands from a bag");
