@@ -56,6 +56,7 @@ void ReducedCraneSimulation::initialize() {
   full_order_steps_ = 0;
   slack_episodes_ = 0;
   fast_hoist_episodes_ = 0;
+  refused_hand_backs_ = 0;
   solver_->initialize(full_.initialState());
   basis_length_ = -1.0;  // the first hoisting step renews the basis
   hoist_subdomain_ = -1;
@@ -77,9 +78,22 @@ void ReducedCraneSimulation::step() {
     // changes every step then; measured in docs/model.md).
     if (least > kTautFraction * end_strain_ &&
         full_.series().rope_top_tension > kTautTensionFraction * weight_ &&
-        full_.drives().hoistSpeed() == 0.0) {
-      solver_->restartAt(full_.state(), true);
-      full_order_ = false;
+        full_.drives().hoistSpeed() == 0.0 && full_order_steps_ % kHandBackCheckSteps == 0) {
+      // Hand back only when the new basis carries the state: the kinetic energy its
+      // projection drops stays under kHandBackEnergyLoss of the rope's kinetic energy
+      // relative to its top (a trial restart; a refused one is overwritten by the next).
+      const CoupledState& f = full_.state();
+      const double before = solver_->statistics().projection_energy_loss;
+      solver_->restartAt(f, true);
+      const double lost = solver_->statistics().projection_energy_loss - before;
+      Eigen::VectorXd vr = f.v;
+      for (int j = 0; j < full_.ropeNodes(); ++j) vr.segment<3>(6 * j) -= f.v.head<3>();
+      const double kinetic = 0.5 * vr.dot(full_.rope().massMatrix() * vr);
+      if (!(lost > kHandBackEnergyLoss * kinetic)) {
+        full_order_ = false;
+      } else {
+        ++refused_hand_backs_;
+      }
     }
     return;
   }

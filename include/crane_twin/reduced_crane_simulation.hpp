@@ -8,9 +8,13 @@
 // so when the rope's top tension falls below kSlackTensionFraction of the hanging weight, or
 // (checked every kSlackCheckSteps steps) any node's axial strain below kSlackFraction of the
 // static strain under the end mass, the run hands its expanded state to the full-order solver,
-// and takes it back (a new subdomain) once every node's strain is above kTautFraction of it and
-// the top tension above kTautTensionFraction of the weight. Without this a 60 deg release (the rope
-// goes almost slack 0.19 s after release) blew up to 35 MN (docs/stability.md).
+// and takes it back (a new subdomain) once every node's strain is above kTautFraction of it, the
+// top tension above kTautTensionFraction of the weight, and the new basis carries the state: the
+// kinetic energy its projection drops is under kHandBackEnergyLoss of the rope's kinetic energy
+// relative to its top (checked every kHandBackCheckSteps full-order steps). Without the hand-over
+// a 60 deg release (the rope goes almost slack 0.19 s after release) blew up to 35 MN; without
+// the energy check the run chattered between the models and the top tension spiked to 2.5 MN
+// (docs/stability.md).
 #pragma once
 
 #include "crane_twin/crane_simulation.hpp"
@@ -58,6 +62,12 @@ class ReducedCraneSimulation final : public Simulation {
   static constexpr double kSlackFraction = 0.3, kTautFraction = 0.6;
   static constexpr double kSlackTensionFraction = 0.3, kTautTensionFraction = 0.45;
   static constexpr int kSlackCheckSteps = 5;
+  /// Hand-back check: fraction of the rope's relative kinetic energy the projection onto the new
+  /// basis may drop, and how often (full-order steps) it is tried. Measured on the 60 deg
+  /// release, 40 elements: 1e-4 and 2e-4 keep the peak tension at 170 kN (full order: 179 kN),
+  /// 5e-4 lets a 1.6 MN spike through (docs/stability.md).
+  static constexpr double kHandBackEnergyLoss = 1e-4;
+  static constexpr int kHandBackCheckSteps = 10;
   /// Hoisting: relative rope length change |L - L_basis| / L after which a subdomain renews its
   /// modes and static correction instead of re-linearising the previous block (Rayleigh-Ritz).
   /// Measured (10 modes, payload error against full order): a fixed 0.05 m was fine on 60 m
@@ -71,6 +81,8 @@ class ReducedCraneSimulation final : public Simulation {
   /// Steps integrated at full order while the rope was slack, and the hand-overs to it.
   long fullOrderSteps() const { return full_order_steps_; }
   int slackEpisodes() const { return slack_episodes_; }
+  /// Hand-back trials refused because the new basis dropped too much of the state's energy.
+  long refusedHandBacks() const { return refused_hand_backs_; }
   /// Hand-overs to full order because the length changed too fast per step.
   long fastHoistEpisodes() const { return fast_hoist_episodes_; }
   bool integratingFullOrder() const { return full_order_; }
@@ -88,7 +100,8 @@ class ReducedCraneSimulation final : public Simulation {
   int slack_episodes_ = 0;
   double basis_length_ = -1.0;  ///< rope length of the last full basis update while hoisting
   int hoist_subdomain_ = -1;
-  long fast_hoist_episodes_ = 0;    ///< the solver's subdomain count after the last hoisting restart
+  long fast_hoist_episodes_ = 0;
+  long refused_hand_backs_ = 0;    ///< the solver's subdomain count after the last hoisting restart
 };
 
 }  // namespace crane_twin
