@@ -1,6 +1,7 @@
 #include "crane_twin/config_reader.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -43,10 +44,15 @@ bool Bounds::contains(double v) const {
 }
 
 YAML::Node loadYamlFile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw InputError(path + ": is a directory, not a YAML file");
+  }
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open file (missing or unreadable)");
   std::stringstream buf;
   buf << in.rdbuf();
+  if (in.bad()) throw InputError(path + ": read error");
   if (buf.str().find_first_not_of(" \t\r\n") == std::string::npos) {
     throw InputError(path + ": file is empty");
   }

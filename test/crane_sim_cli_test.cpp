@@ -123,6 +123,39 @@ namespace {
 const std::string kRope = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/rope_pendulum_chrono.yaml";
 }
 
+TEST(CraneSimCli, NumericalFailureExitsWithOneAndSaysWhenAndWhy) {
+  // A 10-element rope thrown at 300 m/s up and sideways from horizontal with 1 s steps: Newton
+  // fails at the snap even with the step halved six times. Exit 1, the time and the reason on
+  // stderr, and the rows written before it finite.
+  const std::string csv = ::testing::TempDir() + "crane_sim_failure.csv";
+  const Result r = run("run " + kRope + " --set rope.elements=10 --set duration=10"
+                       " --set initial.swing_deg=90 --set time_step=1 --set output_interval=1"
+                       " --set initial.payload_velocity=[0,300,300] --quiet --out " + csv);
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_NE(r.out.find("numerical failure: t = "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("Newton did not converge"), std::string::npos) << r.out;
+  std::ifstream in(csv);
+  std::string line;
+  int rows = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    EXPECT_EQ(line.find("nan"), std::string::npos) << line;
+    EXPECT_EQ(line.find("inf"), std::string::npos) << line;
+  }
+  EXPECT_GE(rows, 2);  // header and the state at t = 0
+}
+
+TEST(CraneSimCli, SceneThatIsNoFileExitsWithTwo) {
+  // A directory, an empty device: refused by name, exit 2 (CI runs as root, so a file without
+  // read permission would still be readable there).
+  Result r = run("info " + ::testing::TempDir());
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("is a directory"), std::string::npos) << r.out;
+  r = run("run /dev/null --quiet");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("/dev/null: file is empty"), std::string::npos) << r.out;
+}
+
 TEST(CraneSimCli, RunWritesSpecColumnsAndSummary) {
   const std::string csv = ::testing::TempDir() + "crane_sim_run.csv";
   const std::string nodes = ::testing::TempDir() + "crane_sim_nodes.csv";
