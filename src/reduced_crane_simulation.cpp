@@ -84,7 +84,12 @@ void ReducedCraneSimulation::step() {
       // relative to its top (a trial restart; a refused one is overwritten by the next).
       const CoupledState& f = full_.state();
       const double before = solver_->statistics().projection_energy_loss;
-      solver_->restartAt(f, true);
+      try {
+        solver_->restartAt(f, true);
+      } catch (const NumericalFailure&) {
+        ++refused_hand_backs_;  // no basis at this state: stay at full order
+        return;
+      }
       const double lost = solver_->statistics().projection_energy_loss - before;
       Eigen::VectorXd vr = f.v;
       for (int j = 0; j < full_.ropeNodes(); ++j) vr.segment<3>(6 * j) -= f.v.head<3>();
