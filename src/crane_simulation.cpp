@@ -109,9 +109,8 @@ CoupledState CraneSimulation::initialState() {
   const double th = sc.swing_deg * M_PI / 180.0, az = sc.swing_azimuth_deg * M_PI / 180.0;
   CoupledState s;
   if (sc.initial_mode == "stress_free") {
-    const Eigen::Vector3d d(std::sin(th) * std::cos(az), std::sin(th) * std::sin(az),
-                            -std::cos(th));
-    s.q = rope_->straight(support_->point(Eigen::VectorXd::Zero(support_->size())), d);
+    s.q = rope_->straight(support_->point(Eigen::VectorXd::Zero(support_->size())),
+                          swingDirection(th, az));
     s.v = Eigen::VectorXd::Zero(rope_->dofs());
   } else {
     s = staticState();
@@ -135,7 +134,6 @@ void CraneSimulation::stepAfterDrives() {
 }
 
 SeriesValues CraneSimulation::seriesOf(const CoupledState& s) const {
-  const Scene& sc = model_.scene;
   const int e = rope_->dofs() - 6;
   SeriesValues v;
   v.t = s.t;

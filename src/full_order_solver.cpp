@@ -203,8 +203,7 @@ CoupledState FullOrderSolver::solveSwingEquilibrium(double swing_rad, double az_
   // Start from the straight rope stretched by the static tension profile
   // T(s) = (W_end + mu g (L - s)) / cos(theta): the tension's geometric stiffness makes the
   // tangent definite (an unstressed straight rope can rotate about the anchor at no cost).
-  const Eigen::Vector3d d(std::sin(swing_rad) * horiz.x(), std::sin(swing_rad) * horiz.y(),
-                          -std::cos(swing_rad));
+  const Eigen::Vector3d d = swingDirection(swing_rad, az_rad);
   Eigen::VectorXd guess(rope_.dofs());
   {
     const double l = rope_.element().length, EA = rope_.element().axial_stiffness;
@@ -262,45 +261,73 @@ void FullOrderSolver::initializeAccelerations(CoupledState& s) {
   s.za = s.zdd;
 }
 
-// One step of size h_. When Newton fails (a slack rope snapping taut, say), the step is
-// retried as two half steps, recursively down to h_ / 2^kMaxHalvings: the generalized-alpha
-// variable a carries over between step sizes (Arnold & Bruls 2007), and 2^k half steps end
-// exactly at t + h_.
-void FullOrderSolver::step(CoupledState& s) {
-  std::string why;
-  if (tryStep(s, h_, why)) return;
-  const CoupledState start = s;
-  if (!stepHalved(s, h_, 1, why)) {
+Eigen::Vector3d swingDirection(double swing_rad, double az_rad) {
+  return Eigen::Vector3d(std::sin(swing_rad) * std::cos(az_rad),
+                         std::sin(swing_rad) * std::sin(az_rad), -std::cos(swing_rad));
+}
+
+namespace {
+// Two steps of h / 2, each halved again where it fails, down to depth max_halvings.
+bool stepHalved(CoupledState& s, double h, int depth, int max_halvings, const TryStep& try_step,
+                long& halved, std::string& why) {
+  const double half = 0.5 * h;
+  for (int k = 0; k < 2; ++k) {
+    const CoupledState start = s;
+    if (try_step(s, half, why)) {
+      ++halved;
+      continue;
+    }
     s = start;
-    throw NumericalFailure(why + " (also with the step halved " + std::to_string(kMaxHalvings) +
+    if (depth >= max_halvings ||
+        !stepHalved(s, half, depth + 1, max_halvings, try_step, halved, why)) {
+      return false;
+    }
+  }
+  return true;
+}
+}  // namespace
+
+void stepWithHalving(CoupledState& s, double h, int max_halvings, const TryStep& try_step,
+                     long& halved) {
+  std::string why;
+  if (try_step(s, h, why)) return;
+  const CoupledState start = s;
+  if (!stepHalved(s, h, 1, max_halvings, try_step, halved, why)) {
+    s = start;
+    throw NumericalFailure(why + " (also with the step halved " + std::to_string(max_halvings) +
                            " times)");
   }
 }
 
-bool FullOrderSolver::stepHalved(CoupledState& s, double h, int depth, std::string& why) {
-  const double half = 0.5 * h;
-  for (int k = 0; k < 2; ++k) {
-    const CoupledState start = s;
-    if (tryStep(s, half, why)) {
-      ++halved_steps_;
-      continue;
-    }
-    s = start;
-    if (depth >= kMaxHalvings || !stepHalved(s, half, depth + 1, why)) return false;
-  }
-  return true;
+double correctSupport(const GeneralizedAlpha& ga, const RopeSupport& support, double h,
+                      const Eigen::VectorXd& Azr, const Eigen::Vector3d& dmu, CoupledState& s) {
+  if (support.size() == 0) return 0.0;
+  const Eigen::VectorXd dz = Azr + support.solvePointForce(dmu);
+  ga.correct(h, dz, s.z, s.zd, s.zdd);
+  return support.pointMotion(dz).cwiseAbs().maxCoeff();
+}
+
+void completeStep(const GeneralizedAlpha& ga, const CoupledState& start, double h, int iterations,
+                  CoupledState& s) {
+  s.a = ga.nextA(start.qdd, start.a, s.qdd);
+  if (s.z.size() > 0) s.za = ga.nextA(start.zdd, start.za, s.zdd);
+  s.t += h;
+  s.newton_iterations = iterations;
+}
+
+// One step of size h_, halved where Newton fails (stepWithHalving).
+void FullOrderSolver::step(CoupledState& s) {
+  stepWithHalving(s, h_, kMaxHalvings,
+                  [this](CoupledState& x, double h, std::string& why) { return tryStep(x, h, why); },
+                  halved_steps_);
 }
 
 bool FullOrderSolver::tryStep(CoupledState& s, double h, std::string& why) {
   const int n = rope_.dofs(), m = support_.size();
   const double bh2 = ga_.beta * h * h, massWeight = ga_.massWeight();
   const CoupledState start = s;
-  const Eigen::VectorXd& qdd0 = start.qdd;
-  const Eigen::VectorXd& a0 = start.a;
-  const Eigen::VectorXd& zdd0 = start.zdd;
-  const Eigen::VectorXd& za0 = start.za;
-  ga_.predict(h, qdd0, a0, s.q, s.v);
-  if (m > 0) ga_.predict(h, zdd0, za0, s.z, s.zd);
+  ga_.predict(h, start.qdd, start.a, s.q, s.v);
+  if (m > 0) ga_.predict(h, start.zdd, start.za, s.z, s.zd);
   const Eigen::Matrix3d G = support_.setIterationWeights(massWeight, ga_.gamma * h, bh2);
   Eigen::VectorXd Q, Azr, rz;
   const SparseMatrix& M = rope_.massMatrix();
@@ -327,25 +354,15 @@ bool FullOrderSolver::tryStep(CoupledState& s, double h, std::string& why) {
     const Eigen::VectorXd dq = dx.head(n);
     ga_.correct(h, dq, s.q, s.v, s.qdd);
     s.lambda += dx.tail<3>() / bh2;
-    double dmax = dq.cwiseAbs().maxCoeff();
-    if (m > 0) {
-      const Eigen::VectorXd dz = Azr + support_.solvePointForce(dx.tail<3>());
-      ga_.correct(h, dz, s.z, s.zd, s.zdd);
-      // Structure coordinates are modal amplitudes [sqrt(kg) m] or displacements [m]; their
-      // effect at the support point bounds the change that matters for the rope.
-      dmax = std::max(dmax, support_.pointMotion(dz).cwiseAbs().maxCoeff());
-    }
+    const double dmax = std::max(dq.cwiseAbs().maxCoeff(),
+                                 correctSupport(ga_, support_, h, Azr, dx.tail<3>(), s));
     if (!s.q.allFinite() || !s.z.allFinite() || !s.lambda.allFinite()) {
       why = at + ": non-finite state";
       s = start;
       return false;
     }
     if (dmax < newton_.position_tolerance && constraintError(s) < newton_.constraint_tolerance) {
-      ++it;
-      s.a = ga_.nextA(qdd0, a0, s.qdd);
-      if (m > 0) s.za = ga_.nextA(zdd0, za0, s.zdd);
-      s.t += h;
-      s.newton_iterations = it;
+      completeStep(ga_, start, h, it + 1, s);
       return true;
     }
   }

@@ -34,12 +34,11 @@ void PendulumCraneSimulation::initialize() {
   support_->setSlewMotion(0.0, 0.0);
   const double th = sc.swing_deg * M_PI / 180.0, az = sc.swing_azimuth_deg * M_PI / 180.0;
   if (sc.initial_mode == "stress_free") {
-    const Eigen::Vector3d d(std::sin(th) * std::cos(az), std::sin(th) * std::sin(az),
-                            -std::cos(th));
     const int m = support_->size();
     state_ = CoupledState{};
     state_.z = state_.zd = Eigen::VectorXd::Zero(m);
-    state_.q = PendulumRope::straight(support_->point(state_.z), d, rope_->length());
+    state_.q = PendulumRope::straight(support_->point(state_.z), swingDirection(th, az),
+                                       rope_->length());
     state_.v = Eigen::VectorXd::Zero(PendulumRope::kDofs);
   } else {
     state_ = staticState();

@@ -29,8 +29,7 @@ CoupledState PendulumSolver::solveSwingEquilibrium(double swing_rad, double az_r
   const double mu_l = rope_.massPerLength() * rope_.length();
   const double endW = (rope_.endMass() + 0.5 * mu_l) * gn;  // weight the end point carries
   const Eigen::Vector3d horiz(std::cos(az_rad), std::sin(az_rad), 0.0);
-  const Eigen::Vector3d u(std::sin(swing_rad) * horiz.x(), std::sin(swing_rad) * horiz.y(),
-                          -std::cos(swing_rad));
+  const Eigen::Vector3d u = swingDirection(swing_rad, az_rad);
   const double H = std::tan(swing_rad) * endW;
   const double T = endW / std::cos(swing_rad);
   CoupledState s;
@@ -77,28 +76,9 @@ void PendulumSolver::initializeAccelerations(CoupledState& s) {
 }
 
 void PendulumSolver::step(CoupledState& s) {
-  std::string why;
-  if (tryStep(s, h_, why)) return;
-  const CoupledState start = s;
-  if (!stepHalved(s, h_, 1, why)) {
-    s = start;
-    throw NumericalFailure(why + " (also with the step halved " +
-                           std::to_string(FullOrderSolver::kMaxHalvings) + " times)");
-  }
-}
-
-bool PendulumSolver::stepHalved(CoupledState& s, double h, int depth, std::string& why) {
-  const double half = 0.5 * h;
-  for (int k = 0; k < 2; ++k) {
-    const CoupledState start = s;
-    if (tryStep(s, half, why)) {
-      ++halved_steps_;
-      continue;
-    }
-    s = start;
-    if (depth >= FullOrderSolver::kMaxHalvings || !stepHalved(s, half, depth + 1, why)) return false;
-  }
-  return true;
+  stepWithHalving(s, h_, FullOrderSolver::kMaxHalvings,
+                  [this](CoupledState& x, double h, std::string& why) { return tryStep(x, h, why); },
+                  halved_steps_);
 }
 
 bool PendulumSolver::tryStep(CoupledState& s, double h, std::string& why) {
@@ -134,22 +114,15 @@ bool PendulumSolver::tryStep(CoupledState& s, double h, std::string& why) {
     const Eigen::VectorXd dq = dx.head<6>();
     ga_.correct(h, dq, s.q, s.v, s.qdd);
     s.lambda += dx.tail<3>() / bh2;
-    double dmax = dq.cwiseAbs().maxCoeff();
-    if (m > 0) {
-      const Eigen::VectorXd dz = Azr + support_.solvePointForce(dx.tail<3>());
-      ga_.correct(h, dz, s.z, s.zd, s.zdd);
-      dmax = std::max(dmax, support_.pointMotion(dz).cwiseAbs().maxCoeff());
-    }
+    const double dmax = std::max(dq.cwiseAbs().maxCoeff(),
+                                 correctSupport(ga_, support_, h, Azr, dx.tail<3>(), s));
     if (!s.q.allFinite() || !s.z.allFinite() || !s.lambda.allFinite()) {
       why = at + ": non-finite state";
       s = start;
       return false;
     }
     if (dmax < newton_.position_tolerance && constraintError(s) < newton_.constraint_tolerance) {
-      s.a = ga_.nextA(start.qdd, start.a, s.qdd);
-      if (m > 0) s.za = ga_.nextA(start.zdd, start.za, s.zdd);
-      s.t += h;
-      s.newton_iterations = it + 1;
+      completeStep(ga_, start, h, it + 1, s);
       return true;
     }
   }

@@ -77,7 +77,7 @@ void ReducedCraneSimulation::step() {
     // A slack episode while the hoist moves stays at full order until it stops (the length
     // changes every step then; measured in docs/model.md).
     if (least > kTautFraction * end_strain_ &&
-        full_.series().rope_top_tension > kTautTensionFraction * weight_ &&
+        full_.solver().topTension(full_.state()) > kTautTensionFraction * weight_ &&
         full_.drives().hoistSpeed() == 0.0 && full_order_steps_ % kHandBackCheckSteps == 0) {
       // Hand back only when the new basis carries the state: the kinetic energy its
       // projection drops stays under kHandBackEnergyLoss of the rope's kinetic energy

@@ -25,6 +25,7 @@
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
+#include <functional>
 #include <stdexcept>
 #include <string>
 
@@ -78,6 +79,32 @@ struct NewtonSettings {
   double constraint_tolerance = 1e-12;
   int max_iterations = 30;
 };
+
+/// Unit chord direction of a rope at swing_rad from the vertical, azimuth az_rad (SPEC 2):
+/// (sin s cos a, sin s sin a, -cos s), pointing down the rope.
+Eigen::Vector3d swingDirection(double swing_rad, double az_rad);
+
+/// One step of size h of a generalized-alpha solver whose `try_step(s, h, why)` leaves s at the
+/// step's start and returns false where Newton fails: such a step is retried as two half steps,
+/// recursively down to h / 2^max_halvings (the acceleration-like variable a carries over
+/// between step sizes, Arnold & Bruls 2007, and 2^k half steps end exactly at t + h). Counts the
+/// half steps taken in `halved`. Throws NumericalFailure naming the time and the reason; s is
+/// then left at the step's start.
+using TryStep = std::function<bool(CoupledState&, double, std::string&)>;
+void stepWithHalving(CoupledState& s, double h, int max_halvings, const TryStep& try_step,
+                     long& halved);
+
+/// The support part of a Newton correction: dz = A_z^-1 (r_z + D^T dmu) from the condensed
+/// solve (Azr = A_z^-1 r_z), applied to (z, z', z''). Returns max |D dz|, the change at the
+/// support point (modal amplitudes [sqrt(kg) m] or displacements [m] measured where they act on
+/// the rope). No-op returning 0 for a support without coordinates.
+double correctSupport(const GeneralizedAlpha& ga, const RopeSupport& support, double h,
+                      const Eigen::VectorXd& Azr, const Eigen::Vector3d& dmu, CoupledState& s);
+
+/// Close a converged step of size h that started at `start`: the generalized-alpha variables a,
+/// z_a, the time and the iteration count.
+void completeStep(const GeneralizedAlpha& ga, const CoupledState& start, double h, int iterations,
+                  CoupledState& s);
 
 /// Total mechanical energy of a state: 1/2 v^T M v + U(q) - F_g^T q (gravity potential, zero at
 /// q = 0) plus the support's kinetic and strain energy [J].
@@ -147,8 +174,6 @@ class FullOrderSolver {
   void factorize(const std::string& what);
   // One step of size h from s; false (s unchanged, the reason in why) where Newton fails.
   bool tryStep(CoupledState& s, double h, std::string& why);
-  // Two steps of h / 2, each halved again where it fails, down to depth kMaxHalvings.
-  bool stepHalved(CoupledState& s, double h, int depth, std::string& why);
   long halved_steps_ = 0;
   double rope_damping_ = 0.0;
   const AncfRope& rope_;

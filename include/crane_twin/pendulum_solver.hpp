@@ -48,7 +48,6 @@ class PendulumSolver {
 
  private:
   bool tryStep(CoupledState& s, double h, std::string& why);
-  bool stepHalved(CoupledState& s, double h, int depth, std::string& why);
   const PendulumRope& rope_;
   RopeSupport& support_;
   GeneralizedAlpha ga_;
