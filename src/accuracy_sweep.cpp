@@ -69,14 +69,31 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
   const std::vector<int> modes = quick ? std::vector<int>{10} : std::vector<int>{6, 10, 20};
   const std::vector<double> deltas = quick ? std::vector<double>{0.05, 0.5} : std::vector<double>{0.05, 0.2, 0.5};
   const std::vector<double> steps = quick ? std::vector<double>{0.001, 0.01} : std::vector<double>{0.001, 0.005, 0.01};
+  const std::string frame = scene.rope.subdomain_frame;
   for (int m : modes)
     for (double d : deltas)
       for (double dt : steps) {
         g.push_back({"reduced",
                      {"rope.model=reduced", "rope.mode_count=" + std::to_string(m),
                       "rope.subdomain_delta=" + num(d), "time_step=" + num(dt)},
-                     dt, m, d, scene.structure_modes, scene.structure_model});
+                     dt, m, d, scene.structure_modes, scene.structure_model, frame});
       }
+  if (!quick) {
+    for (double dt : {0.02, 0.05}) {
+      g.push_back({"reduced",
+                   {"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_delta=0.05",
+                    "time_step=" + num(dt)},
+                   dt, 10, 0.05, scene.structure_modes, scene.structure_model, frame});
+    }
+  }
+  if (!quick && frame != "fixed") {
+    for (double d : deltas) {
+      g.push_back({"reduced",
+                   {"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_delta=" + num(d),
+                    "time_step=0.005", "rope.subdomain_frame=fixed"},
+                   0.005, 10, d, scene.structure_modes, scene.structure_model, "fixed"});
+    }
+  }
   if (!quick) {
     // The paper's setting: half of the rope DOF, the scene's delta and step.
     Scene half = scene;
@@ -86,12 +103,19 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
                  {"rope.model=reduced", "rope.mode_count=0", "rope.mode_fraction=0.5",
                   "time_step=" + num(scene.time_step)},
                  scene.time_step, keptRopeModes(half), scene.rope.subdomain_delta,
-                 scene.structure_modes, scene.structure_model});
+                 scene.structure_modes, scene.structure_model, frame});
+    if (frame != "fixed") {
+      g.push_back({"reduced",
+                   {"rope.model=reduced", "rope.mode_count=0", "rope.mode_fraction=0.5",
+                    "time_step=" + num(scene.time_step), "rope.subdomain_frame=fixed"},
+                   scene.time_step, keptRopeModes(half), scene.rope.subdomain_delta,
+                   scene.structure_modes, scene.structure_model, "fixed"});
+    }
     if (scene.crane && scene.structure_model == "modal") {
       g.push_back({"reduced",
                    {"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_delta=0.2",
                     "time_step=0.005", "structure.modes=20"},
-                   0.005, 10, 0.2, 20, "modal"});
+                   0.005, 10, 0.2, 20, "modal", frame});
     }
   }
   // The fidelity ladder: the pendulum rope, and the rigid structure under each rope model.
@@ -114,7 +138,7 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
     g.push_back({"reduced",
                  {"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_delta=0.2",
                   "time_step=0.005", "structure.model=rigid"},
-                 0.005, 10, 0.2, 0, "rigid"});
+                 0.005, 10, 0.2, 0, "rigid", frame});
   }
   return g;
 }
@@ -161,7 +185,7 @@ std::vector<SweepResult> runSweep(const std::string& scene_file,
 const char* const kSweepHeader =
     "scene,model,time_step,rope_modes,delta,structure_modes,wall_s,rtf,subdomains,"
     "mode_updates_s,payload_error_max,rope_rms_max,cab_error_max,jib_tip_error_max,"
-    "structure_model";
+    "structure_model,subdomain_frame";
 
 std::string sweepRow(const std::string& scene, const SweepResult& r) {
   std::ostringstream s;
@@ -170,7 +194,8 @@ std::string sweepRow(const std::string& scene, const SweepResult& r) {
   s << scene << ',' << c.model << ',' << c.time_step << ',' << c.rope_modes << ',' << c.delta << ','
     << c.structure_modes << ',' << r.wall_s << ',' << r.rtf << ',' << r.subdomains << ','
     << r.mode_updates_s << ',' << r.error.payload_max << ',' << r.error.rope_rms_max << ','
-    << r.error.cab_max << ',' << r.error.jib_tip_max << ',' << c.structure_model;
+    << r.error.cab_max << ',' << r.error.jib_tip_max << ',' << c.structure_model << ','
+    << c.frame;
   return s.str();
 }
 

@@ -30,6 +30,7 @@ ReducedSettings settingsFor(const CraneModel& model) {
   s.delta = r.subdomain_delta;
   s.update = r.mode_update == "cold" ? ModeUpdate::cold : ModeUpdate::warm;
   s.residual_tolerance = r.subdomain_residual;
+  s.corotational = r.subdomain_frame == "corotational";
   return s;
 }
 }  // namespace

@@ -1,5 +1,6 @@
 #include "crane_twin/reduced_order_solver.hpp"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -17,6 +18,12 @@ Eigen::Vector3d translationSum(const Eigen::VectorXd& x) {
 
 std::string at(double t) { return "t = " + std::to_string(t) + " s"; }
 
+Eigen::Matrix3d cross(const Eigen::Vector3d& a) {
+  Eigen::Matrix3d A;
+  A << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return A;
+}
+
 }  // namespace
 
 ReducedOrderSolver::ReducedOrderSolver(const AncfRope& rope, RopeSupport& support,
@@ -31,6 +38,100 @@ ReducedOrderSolver::ReducedOrderSolver(const AncfRope& rope, RopeSupport& suppor
   if (!(settings_.delta > 0.0)) throw std::invalid_argument("reduced rope: delta must be > 0");
   if (!(time_step > 0.0)) throw std::invalid_argument("time step must be positive");
   settings_.modes.kept = settings_.kept_modes;
+}
+
+// theta = c x D_last / |c|^2, R = exp([theta]x), J_l = I + (1 - cos f)/f^2 [theta]x +
+// (f - sin f)/f^3 [theta]x^2 with f = |theta| (header).
+ReducedOrderSolver::ChordRotation ReducedOrderSolver::chordRotation(const Eigen::Vector3d& d_last) const {
+  ChordRotation c;
+  if (!frame_) return c;
+  c.theta = chord_.cross(d_last) / chord_.squaredNorm();
+  const double f = c.theta.norm();
+  if (f == 0.0) return c;
+  c.R = Eigen::AngleAxisd(f, c.theta / f).toRotationMatrix();
+  const double f2 = f * f;
+  const double a = f < 1e-4 ? 0.5 - f2 / 24.0 : (1.0 - std::cos(f)) / f2;
+  const double b = f < 1e-4 ? 1.0 / 6.0 - f2 / 120.0 : (f - std::sin(f)) / (f2 * f);
+  const Eigen::Matrix3d X = cross(c.theta);
+  c.J = Eigen::Matrix3d::Identity() + a * X + b * X * X;
+  return c;
+}
+
+void ReducedOrderSolver::rotateBlocks(const Eigen::Matrix3d& R, Eigen::MatrixXd& phi) {
+  for (int k = 0; 3 * k < phi.rows(); ++k) phi.middleRows<3>(3 * k) = R * phi.middleRows<3>(3 * k);
+}
+
+// The linear dynamics read in the chord's frame (header). The rope's equations M e'' = F_g -
+// Q(e) + E^T lambda, e = T u_b + top_m + R (base + W), W = D - theta x base the deformation in
+// the frame, multiplied by R^T (blockwise; M commutes with it): with Q(base + W) ~ Q_m + K_m W
+// = Q_m + K_m D - theta x Q_m (d/dtheta Q(R base) = theta x Q_m, exact for the linear term) and
+// R^T e''_rel = W'' + a x (base + W) + [w x]^2 (base + W) + 2 w x W' (w = J theta' the
+// frame's angular velocity, a = J theta'' + J' theta' its acceleration), the rows of Phi_c read
+//   Phi_c^T [M D'' + K_m D] + M_cb u_b'' = Phi_c^T (F_g - Q_m) + Phi_c^T [(R^T - I) F_g
+//       + theta x Q_m - M A base] - M_cb (R^T - I) u_b'',   A = [w x]^2 + [(J - I) theta'' x],
+// the inertia of the frame's rotation (centripetal and the Euler term's second-order part;
+// m w^2 L is 90 N on the T8036's 2.3 deg swing) and the top's acceleration seen in the frame.
+// The translations u_b are inertial: their row, T^T M e'' = W_total + lambda, takes the
+// relative inertia rotated into the inertial frame, R T^T M (D'' + A base), so its load is
+// -T^T M A base - (R - I) T^T M (D'' + A base). All of it is evaluated at the step's predicted
+// state and the last accelerations (explicit: small against the stiffness). Left out:
+// Coriolis 2 w x W' and a x W (deformation rates and deformations times the frame's rates),
+// and J' theta'. Every term is a 3 x 3 matrix applied blockwise to a field x, projected as
+// sum_kl A_kl [Phi_c; T]^T (e_k x_l): the 9-column tables below.
+Eigen::Matrix<double, Eigen::Dynamic, 9> ReducedOrderSolver::blockwiseTable(
+    const Eigen::VectorXd& x) const {
+  const int r = static_cast<int>(phi_.cols()), n = rope_.dofs();
+  Eigen::Matrix<double, Eigen::Dynamic, 9> t(r + 3, 9);
+  for (int c = 0; c < 9; ++c) {
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(n);
+    for (int k = 0; 3 * k < n; ++k) u(3 * k + c / 3) = x(3 * k + c % 3);
+    t.col(c).head(r) = phi_.transpose() * u;
+    t.col(c).tail<3>() = translationSum(u);
+  }
+  return t;
+}
+
+void ReducedOrderSolver::prepareFrameLoads(const Eigen::VectorXd& Q) {
+  if (!frame_) return;
+  centrifugal_ = blockwiseTable(rope_.massMatrix() * base_);  // M (A base) = A (M base)
+  gravity_rotation_ = blockwiseTable(rope_.gravityForce());
+  elastic_rotation_ = blockwiseTable(Q);
+  gravity_rotation_.bottomRows<3>().setZero();
+  elastic_rotation_.bottomRows<3>().setZero();
+}
+
+Eigen::VectorXd ReducedOrderSolver::frameLoad(const Eigen::VectorXd& y, const Eigen::VectorXd& yd,
+                                              const Eigen::VectorXd& ydd) const {
+  const int r = static_cast<int>(phi_.cols()), last = rope_.nodes() - 1;
+  if (!frame_) return Eigen::VectorXd::Zero(r + 3);
+  const auto rows = node_rows_.middleRows<3>(3 * last);
+  const ChordRotation c = chordRotation(rows * y.head(r));
+  const Eigen::Vector3d w = c.J * chordRotation(rows * yd.head(r)).theta;
+  const Eigen::Vector3d euler =
+      (c.J - Eigen::Matrix3d::Identity()) * chordRotation(rows * ydd.head(r)).theta;
+  const Eigen::Matrix3d A =
+      w * w.transpose() - w.squaredNorm() * Eigen::Matrix3d::Identity() + cross(euler);
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  auto vec = [](const Eigen::Matrix3d& X) {
+    Eigen::Matrix<double, 9, 1> v;
+    for (int i = 0; i < 9; ++i) v(i) = X(i / 3, i % 3);
+    return v;
+  };
+  const Eigen::Matrix<double, 9, 1> a = vec(A);
+  Eigen::VectorXd out = gravity_rotation_ * vec(c.R.transpose() - I) +
+                        elastic_rotation_ * vec(cross(c.theta)) - centrifugal_ * a;
+  out.head(r) -= Mcb_ * ((c.R.transpose() - I) * ydd.tail<3>());
+  out.tail<3>() -= (c.R - I) * (Mcb_.transpose() * ydd.head(r) + centrifugal_.bottomRows<3>() * a);
+  return out;
+}
+
+Eigen::VectorXd ReducedOrderSolver::centripetalField(const Eigen::VectorXd& v) const {
+  Eigen::VectorXd a = Eigen::VectorXd::Zero(base_.size());
+  if (!frame_) return a;
+  const int last = 6 * (rope_.nodes() - 1);
+  const Eigen::Vector3d w = chord_.cross(v.segment<3>(last) - v.head<3>()) / chord_.squaredNorm();
+  for (int k = 0; 3 * k < a.size(); ++k) a.segment<3>(3 * k) = w.cross(w.cross(base_.segment<3>(3 * k)));
+  return a;
 }
 
 Eigen::VectorXd ReducedOrderSolver::expand(const Eigen::VectorXd& y) const {
@@ -93,6 +194,15 @@ void ReducedOrderSolver::startSubdomain(const Eigen::VectorXd& e, BasisUpdate ho
   Eigen::VectorXd Q;
   const SparseMatrix K = rope_.tangentStiffness(e, &Q);
   const SparseMatrix& M = rope_.massMatrix();
+  const int last = rope_.nodes() - 1;
+  const Eigen::Vector3d chord = e.segment<3>(6 * last) - e.head<3>();
+  if (settings_.corotational && modes_.phi.size() > 0) {
+    // The modes of the rotated rope are the rotated modes (header): the update starts there.
+    const Eigen::Matrix3d R =
+        Eigen::Quaterniond::FromTwoVectors(basis_chord_, chord).toRotationMatrix();
+    rotateBlocks(R, modes_.phi);
+    rotateBlocks(R, phi_);
+  }
   if (how == BasisUpdate::ritz && phi_.size() > 0) {
     ritz(K, M);
     ++stats_.ritz_updates;
@@ -108,6 +218,9 @@ void ReducedOrderSolver::startSubdomain(const Eigen::VectorXd& e, BasisUpdate ho
       modes_ = coldRopeModes(K, M, settings_.modes);
     }
   }
+  basis_chord_ = chord;
+  // Hoisting subdomains last a step (every length change starts one): the linear map there.
+  frame_ = settings_.corotational && how == BasisUpdate::modes;
   if (how != BasisUpdate::ritz || phi_.size() == 0) {
     phi_ = modes_.phi.leftCols(settings_.kept_modes);
     omega2_ = modes_.omega2.head(settings_.kept_modes);
@@ -137,10 +250,14 @@ void ReducedOrderSolver::startSubdomain(const Eigen::VectorXd& e, BasisUpdate ho
     slope_rows_.middleRows<3>(3 * j) = phi_.middleRows<3>(6 * j + 3);
   }
   e_m_ = e;
+  base_ = e;
+  for (int j = 0; j <= last; ++j) base_.segment<3>(6 * j) -= e.head<3>();
+  chord_ = chord;
   if (settings_.residual_tolerance > 0.0) {
     K_m_ = K;
     Q_m_ = Q;
   }
+  prepareFrameLoads(Q);
   steps_in_subdomain_ = 0;
   G_step_.setConstant(std::nan(""));  // forces the step system's refactorisation
   ++stats_.subdomains;
@@ -199,7 +316,7 @@ Eigen::Matrix<double, 6, 6> ReducedOrderSolver::eliminatedMatrix(double a, doubl
 
 void ReducedOrderSolver::initializeAccelerations() {
   const int r = static_cast<int>(phi_.cols()), m = support_.size();
-  Eigen::VectorXd ry = f_;
+  Eigen::VectorXd ry = f_ + frameLoad(s_.y, s_.yd, Eigen::VectorXd::Zero(r + 3));
   ry.head(r) -= omega2_.cwiseProduct(s_.y.head(r));
   Eigen::VectorXd rz, dz;
   if (m > 0) rz = -support_.internalForce(s_.z, s_.zd, Eigen::VectorXd::Zero(m));
@@ -233,12 +350,17 @@ void ReducedOrderSolver::initialize(const CoupledState& full) {
 
 // Paper eq. (10) measured on the deformation part Phi_c p_c: the rigid translation T u_b costs
 // the linearisation nothing (Q(e + T u) = Q(e), K T = 0), so a trolley travelling or slewing
-// does not by itself cut subdomains; the swing it excites does.
+// does not by itself cut subdomains; the swing it excites does. In the chord's frame
+// (corotational) the chord's rotation costs nothing either (header): the criterion reads the
+// deformation W_j = D_j - theta x base_j, and the rotation is bounded by kMaxChordRotation.
 double ReducedOrderSolver::maxNodeIncrement() const {
-  const int r = static_cast<int>(phi_.cols());
+  const int r = static_cast<int>(phi_.cols()), last = rope_.nodes() - 1;
   const Eigen::VectorXd inc = node_rows_ * s_.y.head(r);
+  const ChordRotation c = chordRotation(inc.segment<3>(3 * last));
   double worst = 0.0;
-  for (int j = 0; j < rope_.nodes(); ++j) worst = std::max(worst, inc.segment<3>(3 * j).squaredNorm());
+  for (int j = 0; j <= last; ++j) {
+    worst = std::max(worst, (inc.segment<3>(3 * j) - c.theta.cross(base_.segment<3>(6 * j))).squaredNorm());
+  }
   return std::sqrt(worst);
 }
 
@@ -254,11 +376,13 @@ void ReducedOrderSolver::step() {
     kkt_lu_.compute(eliminatedMatrix(massWeight, bh2, G));
     G_step_ = G;
   }
-  // Residuals scaled by beta h^2 (as the full-order solver's); the system is linear: one solve.
+  // Residuals scaled by beta h^2 (as the full-order solver's); the system is linear: one solve
+  // (the centrifugal load explicit at the predicted velocity).
+  const Eigen::VectorXd f = f_ + frameLoad(s_.y, s_.yd, ydd0);
   Eigen::VectorXd ry(r + 3);
   ry.head(r) = s_.ydd.head(r) + Mcb_ * s_.ydd.tail<3>() + omega2_.cwiseProduct(s_.y.head(r)) -
-               f_.head(r);
-  ry.tail<3>() = Mcb_.transpose() * s_.ydd.head(r) + Mbb_ * s_.ydd.tail<3>() - f_.tail<3>() +
+               f.head(r);
+  ry.tail<3>() = Mcb_.transpose() * s_.ydd.head(r) + Mbb_ * s_.ydd.tail<3>() - f.tail<3>() +
                  s_.lambda;
   ry *= -bh2;
   Eigen::VectorXd rz, dz;
@@ -281,7 +405,17 @@ void ReducedOrderSolver::step() {
   const bool residualCut = settings_.residual_tolerance > 0.0 &&
                            steps_in_subdomain_ % settings_.residual_check_steps == 0 &&
                            linearisationResidual() > settings_.residual_tolerance;
-  if (residualCut || maxNodeIncrement() > settings_.delta) {
+  const bool rotationCut =
+      frame_ &&
+      chordRotation(node_rows_.middleRows<3>(3 * (rope_.nodes() - 1)) * s_.y.head(r)).theta.norm() >
+          kMaxChordRotation;
+  // The displacement check costs O(n r): with many modes it runs every r / kCheckedModesPerStep
+  // steps (the deformation moves little in between; the step is linear, so a late check only
+  // lets the subdomain run a few steps past delta).
+  const long every = std::max(1, r / kCheckedModesPerStep);
+  const bool displacementCut =
+      steps_in_subdomain_ % every == 0 && maxNodeIncrement() > settings_.delta;
+  if (residualCut || rotationCut || displacementCut) {
     // Switch: rebuild the linearisation at the current state and carry the state over.
     restartAt(fullState());
   }
@@ -305,56 +439,97 @@ void ReducedOrderSolver::restartAt(const CoupledState& f, bool consistent_accele
   s_.lambda = f.lambda;
   s_.y.setZero(r + 3);
   s_.yd = project(f.v);
-  s_.ydd = project(f.qdd);
-  s_.ya = project(f.a);
+  const Eigen::VectorXd ac = centripetalField(f.v);
+  s_.ydd = project(f.qdd - ac);
+  s_.ya = project(f.a - ac);
   if (consistent_accelerations) initializeAccelerations();
   const Eigen::VectorXd vr = expand(s_.yd);
   const SparseMatrix& M = rope_.massMatrix();
   stats_.projection_energy_loss += 0.5 * (f.v.dot(M * f.v) - vr.dot(M * vr));
 }
 
-// max over nodes of |Q(e) - Q_m - K_m (e - e_m)| (translational rows) [N].
+// max over nodes of |Q(e_m + W) - Q_m - K_m W| (translational rows) [N], W = e - e_m in the
+// fixed frame.
 double ReducedOrderSolver::linearisationResidual() const {
-  const Eigen::VectorXd de = expand(s_.y);
+  // In the chord's frame the linearisation is about the deformation W = D - theta x base.
+  Eigen::VectorXd de = phi_ * s_.y.head(phi_.cols());
+  const Eigen::Vector3d theta = chordRotation(de.segment<3>(6 * (rope_.nodes() - 1))).theta;
+  for (int k = 0; 3 * k < de.size(); ++k) de.segment<3>(3 * k) -= theta.cross(base_.segment<3>(3 * k));
   Eigen::VectorXd Q;
   rope_.elasticForce(e_m_ + de, Q);
-  const Eigen::VectorXd r = Q - Q_m_ - K_m_ * de;
+  const Eigen::VectorXd res = Q - Q_m_ - K_m_ * de;
   double worst = 0.0;
-  for (int j = 0; j < rope_.nodes(); ++j) worst = std::max(worst, r.segment<3>(6 * j).norm());
+  for (int j = 0; j < rope_.nodes(); ++j) worst = std::max(worst, res.segment<3>(6 * j).norm());
   return worst;
 }
 
-CoupledState ReducedOrderSolver::fullState() const {
+// The co-rotational map and its rates (header), per 3-row block b of node positions and slopes:
+// e_b = top + R W_b, W_b = base_b + D_b - theta x base_b; e_b' = u_b' + w x R W_b + R W_b';
+// e_b'' = u_b'' + J theta'' x R W_b + w x (w x R W_b) + 2 w x R W_b' + R W_b''
+// (w = J theta'; the d/dt J term, second order in theta, is left out). The generalized-alpha
+// variable a is mapped as an acceleration.
+CoupledState ReducedOrderSolver::fullState() const { return fullStateOf(s_); }
+
+CoupledState ReducedOrderSolver::fullStateOf(const ReducedState& st) const {
+  const int r = static_cast<int>(phi_.cols());
+  const Eigen::VectorXd D = phi_ * st.y.head(r), Dv = phi_ * st.yd.head(r),
+                        Da = phi_ * st.ydd.head(r), Dg = phi_ * st.ya.head(r);
+  const int last = 6 * (rope_.nodes() - 1);
+  const ChordRotation c = chordRotation(D.segment<3>(last));
+  const Eigen::Vector3d thv = chordRotation(Dv.segment<3>(last)).theta,
+                        tha = chordRotation(Da.segment<3>(last)).theta,
+                        thg = chordRotation(Dg.segment<3>(last)).theta;
+  const Eigen::Vector3d w = c.J * thv, alpha = c.J * tha, alpha_g = c.J * thg;
   CoupledState f;
-  f.t = s_.t;
-  f.q = e_m_ + expand(s_.y);
-  f.v = expand(s_.yd);
-  f.qdd = expand(s_.ydd);
-  f.a = expand(s_.ya);
-  f.z = s_.z;
-  f.zd = s_.zd;
-  f.zdd = s_.zdd;
-  f.za = s_.za;
-  f.lambda = s_.lambda;
+  f.t = st.t;
+  const int n = rope_.dofs();
+  f.q.resize(n);
+  f.v.resize(n);
+  f.qdd.resize(n);
+  f.a.resize(n);
+  for (int k = 0; 3 * k < n; ++k) {
+    const Eigen::Vector3d b = base_.segment<3>(3 * k);
+    const Eigen::Vector3d RW = c.R * (b + D.segment<3>(3 * k) - c.theta.cross(b));
+    const Eigen::Vector3d RWv = c.R * (Dv.segment<3>(3 * k) - thv.cross(b));
+    const Eigen::Vector3d common = w.cross(w.cross(RW)) + 2.0 * w.cross(RWv);
+    f.q.segment<3>(3 * k) = RW;
+    f.v.segment<3>(3 * k) = w.cross(RW) + RWv;
+    f.qdd.segment<3>(3 * k) = alpha.cross(RW) + common + c.R * (Da.segment<3>(3 * k) - tha.cross(b));
+    f.a.segment<3>(3 * k) = alpha_g.cross(RW) + common + c.R * (Dg.segment<3>(3 * k) - thg.cross(b));
+    if (k % 2 == 0) {  // a node position: the top's motion
+      f.q.segment<3>(3 * k) += e_m_.head<3>() + st.y.tail<3>();
+      f.v.segment<3>(3 * k) += st.yd.tail<3>();
+      f.qdd.segment<3>(3 * k) += st.ydd.tail<3>();
+      f.a.segment<3>(3 * k) += st.ya.tail<3>();
+    }
+  }
+  f.z = st.z;
+  f.zd = st.zd;
+  f.zdd = st.zdd;
+  f.za = st.za;
+  f.lambda = st.lambda;
   return f;
 }
 
 Eigen::Vector3d ReducedOrderSolver::nodePosition(int j) const {
   const int r = static_cast<int>(phi_.cols());
-  return e_m_.segment<3>(6 * j) + node_rows_.middleRows<3>(3 * j) * s_.y.head(r) + s_.y.tail<3>();
-}
-
-Eigen::Vector3d ReducedOrderSolver::nodeVelocity(int j) const {
-  const int r = static_cast<int>(phi_.cols());
-  return node_rows_.middleRows<3>(3 * j) * s_.yd.head(r) + s_.yd.tail<3>();
+  const Eigen::VectorXd p = s_.y.head(r);
+  const Eigen::Vector3d b = base_.segment<3>(6 * j), Dj = node_rows_.middleRows<3>(3 * j) * p;
+  const ChordRotation c =
+      chordRotation(node_rows_.middleRows<3>(3 * (rope_.nodes() - 1)) * p);
+  return e_m_.head<3>() + s_.y.tail<3>() + c.R * (b + Dj - c.theta.cross(b));
 }
 
 double ReducedOrderSolver::minNodalStrain() const {
   const int r = static_cast<int>(phi_.cols());
   const Eigen::VectorXd slopes = slope_rows_ * s_.y.head(r);
+  const Eigen::Vector3d theta =
+      chordRotation(node_rows_.middleRows<3>(3 * (rope_.nodes() - 1)) * s_.y.head(r)).theta;
   double least = 1e300;
   for (int j = 0; j < rope_.nodes(); ++j) {
-    least = std::min(least, (e_m_.segment<3>(6 * j + 3) + slopes.segment<3>(3 * j)).norm() - 1.0);
+    // |R W| = |W|: the slope's length needs no rotation, only theta.
+    const Eigen::Vector3d b = base_.segment<3>(6 * j + 3);
+    least = std::min(least, (b + slopes.segment<3>(3 * j) - theta.cross(b)).norm() - 1.0);
   }
   return least;
 }

@@ -81,6 +81,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     r.subdomain_delta = n.number("subdomain_delta", 0.05, Bounds::positive());
     r.mode_update = n.string("mode_update", "warm", {"cold", "warm"});
     r.subdomain_residual = n.number("subdomain_residual", 0.0, Bounds::nonNegative());
+    r.subdomain_frame = n.string("subdomain_frame", "fixed", {"fixed", "corotational"});
     r.damping = n.number("damping", 0.0, Bounds::nonNegative());
     r.mass_per_length = n.number("mass_per_length", def.mass_per_length, Bounds::positive());
     r.axial_stiffness = n.number("axial_stiffness", def.axial_stiffness, Bounds::positive());

@@ -88,7 +88,11 @@ std::vector<std::pair<double, int>> ropeOnlyErrors(const std::vector<std::vector
 TEST(ReducedOrder, ErrorFallsAsDeltaShrinks) {
   const std::vector<double> deltas = {0.4, 0.1, 0.025};
   std::vector<std::vector<std::string>> settings;
-  for (double d : deltas) settings.push_back({"rope.subdomain_delta=" + std::to_string(d)});
+  // The paper's fixed frame: its linear map moves the swing along the tangent, so delta
+  // bounds the swing per subdomain (the chord's frame needs no cut for it: below).
+  for (double d : deltas) {
+    settings.push_back({"rope.subdomain_frame=fixed", "rope.subdomain_delta=" + std::to_string(d)});
+  }
   const auto r = ropeOnlyErrors(settings);
   for (std::size_t i = 0; i < r.size(); ++i) {
     std::printf("delta %.3f m: payload error %.3g m, %d subdomains\n", deltas[i], r[i].first,
@@ -108,7 +112,8 @@ TEST(ReducedOrder, T8036PayloadTracksTheFullRunWithSoundModesAndConstraint) {
   };
   CraneSimulation f(model("t8036_combination1.yaml", sets({"rope.model=full"})));
   ReducedCraneSimulation r(
-      model("t8036_combination1.yaml", sets({"rope.model=reduced", "rope.mode_count=10"})));
+      model("t8036_combination1.yaml", sets({"rope.model=reduced", "rope.mode_count=10",
+                                              "rope.subdomain_frame=fixed"})));
   f.initialize();
   r.initialize();
   double err = 0.0, cerr = 0.0;
@@ -137,7 +142,8 @@ TEST(ReducedOrder, ResidualCriterionCutsSubdomainsAndErrorFallsWithItsTolerance)
   const std::vector<double> tols = {300.0, 30.0, 3.0};
   std::vector<std::vector<std::string>> settings;
   for (double t : tols) {
-    settings.push_back({"rope.subdomain_delta=100", "rope.subdomain_residual=" + std::to_string(t)});
+    settings.push_back({"rope.subdomain_frame=fixed", "rope.subdomain_delta=100",
+                        "rope.subdomain_residual=" + std::to_string(t)});
   }
   const auto r = ropeOnlyErrors(settings);
   for (std::size_t i = 0; i < r.size(); ++i) {
@@ -148,4 +154,98 @@ TEST(ReducedOrder, ResidualCriterionCutsSubdomainsAndErrorFallsWithItsTolerance)
       EXPECT_LT(r[i].first, r[i - 1].first) << tols[i];
     }
   }
+}
+
+// ---- The chord's frame (corotational subdomains, ReducedOrderSolver header) -------------------
+
+TEST(ReducedOrderCorotational, MapVelocityIsTheDerivativeOfItsPositions) {
+  // Combination 1 at a reduced state 3 s into the swing (one subdomain, chord rotated): the
+  // mapped velocity against central differences of the mapped positions along y', and the
+  // mapped acceleration against differences of the mapped velocity along (y', y''). The map
+  // leaves out J' theta' (J' theta' = a' theta x theta' + ..., of order |theta|^2 |theta'|^2 |c|
+  // / 12, far under the differences' own error here).
+  ReducedCraneSimulation r(model("t8036_combination1.yaml",
+                                 {"structure.modes=20", "rope.elements=40", "rope.mode_count=10"}));
+  r.initialize();
+  for (int k = 0; k < 3000; ++k) r.step();
+  const ReducedOrderSolver& sol = r.solver();
+  ASSERT_EQ(sol.statistics().subdomains, 1);
+  const ReducedState s = sol.state();
+  const CoupledState f = sol.fullStateOf(s);
+  const double eps = 1e-4;
+  ReducedState sp = s, sm = s;
+  sp.y += eps * s.yd;
+  sm.y -= eps * s.yd;
+  const Eigen::VectorXd vfd = (sol.fullStateOf(sp).q - sol.fullStateOf(sm).q) / (2 * eps);
+  const double verr = (vfd - f.v).norm() / f.v.norm();
+  sp.yd += eps * s.ydd;
+  sm.yd -= eps * s.ydd;
+  const Eigen::VectorXd afd = (sol.fullStateOf(sp).v - sol.fullStateOf(sm).v) / (2 * eps);
+  const int last = 6 * (r.ropeNodes() - 1);
+  const Eigen::Vector3d c = f.q.segment<3>(last) - f.q.head<3>();
+  const Eigen::Vector3d vrel = f.v.segment<3>(last) - f.v.head<3>();
+  const double rate = vrel.norm() / c.norm();
+  ReducedState at_start = s;
+  at_start.y.setZero();
+  const Eigen::Vector3d c0 = (f.q - sol.fullStateOf(at_start).q).segment<3>(last);
+  const double angle = c0.norm() / c.norm();  // the chord's rotation in this subdomain, about
+  const double aerr = (afd - f.qdd).norm();
+  std::printf("map: velocity rel. error %.3g; acceleration rel. error %.3g (chord rotation "
+              "%.3g rad, rate %.3g rad/s)\n",
+              verr, aerr / f.qdd.norm(), angle, rate);
+  EXPECT_GT(angle, 1e-3);
+  EXPECT_LT(verr, 1e-7);
+  EXPECT_LT(aerr, 1e-6 * f.qdd.norm());
+}
+
+namespace {
+// Rope only, 30 elements, 10 modes: (payload error against full order, subdomains) for a swing
+// of `deg` degrees over `steps` steps of 5 ms, in either frame at delta.
+std::pair<double, int> swingError(double deg, int steps, const std::string& frame, double delta) {
+  const std::vector<std::string> base = {"rope.elements=30", "initial.mode=equilibrium",
+                                         "time_step=0.005",
+                                         "initial.swing_deg=" + std::to_string(deg)};
+  auto sets = [&](std::vector<std::string> extra) {
+    extra.insert(extra.begin(), base.begin(), base.end());
+    return extra;
+  };
+  CraneSimulation f(model("rope_pendulum_chrono.yaml", sets({"rope.model=full"})));
+  ReducedCraneSimulation r(model(
+      "rope_pendulum_chrono.yaml",
+      sets({"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_frame=" + frame,
+            "rope.subdomain_delta=" + std::to_string(delta)})));
+  const double e = maxDistance(path(r, steps), path(f, steps));
+  return {e, r.subdomains()};
+}
+
+// (fixed, corotational) results of swingError at the same delta, printed.
+std::pair<std::pair<double, int>, std::pair<double, int>> bothFrames(double deg, int steps,
+                                                                     double delta) {
+  const auto fixed = swingError(deg, steps, "fixed", delta);
+  const auto rotating = swingError(deg, steps, "corotational", delta);
+  std::printf("%g deg swing, delta %g m: fixed %.3g m in %d subdomains; corotational %.3g m in "
+              "%d\n", deg, delta, fixed.first, fixed.second, rotating.first, rotating.second);
+  return {fixed, rotating};
+}
+}  // namespace
+
+TEST(ReducedOrderCorotational, RigidSwingNeedsNoNewSubdomain) {
+  // 2.3 deg for 4 s: the fixed frame cuts the swing into subdomains of delta; in the chord's
+  // frame the swing is the frame's rotation (0.04 rad, under kMaxChordRotation): one subdomain,
+  // closer to full order than the fixed frame's 25 at delta 0.1 m.
+  const auto [fixed, rotating] = bothFrames(2.3, 800, 0.1);
+  EXPECT_GT(fixed.second, 10);
+  EXPECT_EQ(rotating.second, 1);
+  EXPECT_LT(rotating.first, fixed.first);
+  EXPECT_LT(rotating.first, 1e-4);
+}
+
+TEST(ReducedOrderCorotational, LargeSwingIsCutByTheRotationBoundAndTracksFullOrder) {
+  // 20 deg (0.35 rad) for 6 s: the chord's rotation passes kMaxChordRotation, so subdomains
+  // start by rotation; the payload stays closer to the full run than the fixed frame's at the
+  // same delta.
+  const auto [fixed, rotating] = bothFrames(20.0, 1200, 0.1);
+  EXPECT_GE(rotating.second, 3);
+  EXPECT_LT(rotating.first, fixed.first);
+  EXPECT_LT(rotating.first, 0.01);
 }

@@ -19,11 +19,32 @@
 //
 // A new subdomain starts after a step when max_j |r_j - r_j,m - u_b| > delta over the rope
 // nodes: paper eq. (10) less the rigid translation of the whole rope, which the linearisation
-// represents exactly (the elastic force is translation-invariant). At the switch K_m and Q_m are rebuilt at the current e, the modes updated
+// represents exactly (the elastic force is translation-invariant); in the chord's frame (below)
+// less its rotation too. At the switch K_m and Q_m are rebuilt at the current e, the modes updated
 // from the previous block (warm, RopeModes) or recomputed, and the state carried over: positions
 // exactly (y = 0 at the new e_m), velocities and the generalized-alpha accelerations by the
 // M-orthogonal projection onto the new basis, M_r w = B^T M x. The projection can only lose
 // kinetic energy; the loss 1/2 (v^T M v - w^T M_r w) is summed in `projectionEnergyLoss`.
+//
+// Co-rotational subdomains (issue 4, settings.corotational). The linear map moves a swinging
+// rope along the tangent of its arc: after a chord rotation theta the payload sits L theta^2 / 2
+// off the arc, a spurious stretch the next linearisation turns into an axial force of
+// EA theta^2 / 2 (3.5 kN at delta = 0.5 m on the T8036's 60 m rope). The elastic force is
+// rotation-invariant, Q(R e) = R Q(e) (the rope's M is block-diagonal in 3 x 3 identities, so
+// R M R^T = M too), so the linearised force is right to first order in theta and the error is
+// that of the map. The co-rotational map keeps the linear dynamics in y and maps it with the
+// chord rotation: with D = Phi_c p_c (top rows zero), c = chord at e_m (last node - top),
+// theta = c x D_last / |c|^2 (the chord's infinitesimal rotation), R = exp([theta]x), and per
+// node block b (position relative to the top, or slope) of base_b = e_m,b (less the top):
+//   e_b = top_m + u_b + R (base_b + D_b - theta x base_b)    (positions; slopes without top_m + u_b)
+// and its time derivatives (omega = J_l(theta) theta', J_l the left Jacobian of SO(3)). With
+// theta = 0 it is the linear map. At a switch the state is carried in these coordinates and the
+// basis rotated with the chord before its update: the modes of R e are R Phi
+// (K(R e) = R K(e) R^T). The dynamics in the frame carry the frame's inertia and the rotation
+// of gravity (.cpp, frameLoad), so the chord's rotation needs no new subdomain: the criterion
+// reads the deformation in the frame, and a rotation past kMaxChordRotation starts one.
+// Hoisting subdomains (a step each, BasisUpdate::modes_and_correction or ritz) keep the linear
+// map: measured on the operator cycle, the frame there gave 5.0 m payload error (fixed: 5.6 mm).
 //
 // Hoisting (issue 5): the full model's scheme, uniform rescaling (CraneSimulation::
 // applyRopeLength), applied to the expanded state, then a new subdomain at it (every length
@@ -56,6 +77,10 @@ struct ReducedSettings {
   int kept_modes = 10;         ///< fixed-top rope modes kept (plus the 3 translations)
   double delta = 0.05;         ///< subdomain criterion [m]
   ModeUpdate update = ModeUpdate::warm;
+  /// Co-rotational subdomains (header): the chord's rotation within a subdomain is mapped to a
+  /// finite rotation, and the basis rotated with the chord at a switch. false: the paper's
+  /// linear map e = e_m + Phi_c p_c + T u_b as printed.
+  bool corotational = false;
   /// Adaptive alternative to delta (issue 4): > 0 starts a new subdomain when the linearisation
   /// residual |Q(e) - Q_m - K_m (e - e_m)| exceeds this force [N] at any node (checked every
   /// `residual_check_steps` steps); delta then only bounds the displacement as a backstop.
@@ -105,14 +130,22 @@ class ReducedOrderSolver {
   void restartAt(const CoupledState& full, bool consistent_accelerations = false,
                  BasisUpdate how = BasisUpdate::modes, const Eigen::VectorXd& load = {});
 
+  /// Largest chord rotation within one subdomain [rad] (corotational): the frame's inertia
+  /// leaves out terms of order theta times the frame's rates (.cpp), so a swing past this
+  /// starts a new subdomain whatever the deformation.
+  static constexpr double kMaxChordRotation = 0.1;
+  /// The displacement criterion runs every max(1, r / kCheckedModesPerStep) steps (r kept modes).
+  static constexpr int kCheckedModesPerStep = 40;
+
   const ReducedState& state() const { return s_; }
   const ReducedStatistics& statistics() const { return stats_; }
   const RopeModes& modes() const { return modes_; }
   /// The state in full rope coordinates (e, e', e'' from y, y', y''); z, lambda copied.
   CoupledState fullState() const;
+  /// The map of any reduced state of the current subdomain (the co-rotational map, header).
+  CoupledState fullStateOf(const ReducedState& s) const;
   /// Position of rope node j [m] (O(r) work).
   Eigen::Vector3d nodePosition(int j) const;
-  Eigen::Vector3d nodeVelocity(int j) const;
   double constraintError() const;
   /// min over nodes of the axial strain |r_x| - 1 (a slack check: O(n r)).
   double minNodalStrain() const;
@@ -129,6 +162,22 @@ class ReducedOrderSolver {
   // Project a full rope vector x onto the basis (M-orthogonal): solves M_r w = B^T M x.
   Eigen::VectorXd project(const Eigen::VectorXd& x) const;
   Eigen::VectorXd expand(const Eigen::VectorXd& y) const;  // Phi_c p_c + T u_b
+  // The chord rotation of the subdomain's deformation Phi_c p_c (header).
+  struct ChordRotation {
+    Eigen::Vector3d theta = Eigen::Vector3d::Zero();  ///< rotation vector [rad]
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();  ///< exp([theta]x)
+    Eigen::Matrix3d J = Eigen::Matrix3d::Identity();  ///< left Jacobian: omega = J theta'
+  };
+  ChordRotation chordRotation(const Eigen::Vector3d& last_node_displacement) const;
+  // Rotate every node's position and slope rows of `phi` by R (the rope's M is invariant).
+  static void rotateBlocks(const Eigen::Matrix3d& R, Eigen::MatrixXd& phi);
+  // The loads of the chord's frame (corotational, .cpp): tables per subdomain (Q = Q_m), the
+  // load at reduced state (y, yd), a_c at a full-coordinate velocity v at the subdomain start.
+  Eigen::Matrix<double, Eigen::Dynamic, 9> blockwiseTable(const Eigen::VectorXd& x) const;
+  void prepareFrameLoads(const Eigen::VectorXd& Q);
+  Eigen::VectorXd frameLoad(const Eigen::VectorXd& y, const Eigen::VectorXd& yd,
+                            const Eigen::VectorXd& ydd) const;
+  Eigen::VectorXd centripetalField(const Eigen::VectorXd& v) const;
   // Solve the eliminated system with weights (a on M, c on C, k on K) for right-hand sides
   // (r_y, r_z, r_c); returns dy, sets dz and dmu.
   Eigen::VectorXd solveWeighted(double a, double c, double k, const Eigen::VectorXd& ry,
@@ -147,12 +196,17 @@ class ReducedOrderSolver {
   ReducedState s_;
   // Subdomain data.
   Eigen::VectorXd e_m_;
+  Eigen::VectorXd base_;       ///< e_m with the top position taken from the node positions
+  Eigen::Vector3d chord_ = Eigen::Vector3d::Zero();  ///< last node - top node at e_m
+  Eigen::Vector3d basis_chord_ = Eigen::Vector3d::Zero();  ///< chord the basis belongs to
+  bool frame_ = false;  ///< this subdomain runs in the chord's frame (not while hoisting)
   RopeModes modes_;
   Eigen::MatrixXd phi_;                        ///< kept modes (n x r)
   Eigen::VectorXd omega2_;                     ///< kept eigenvalues
   Eigen::Matrix<double, Eigen::Dynamic, 3> Mcb_;  ///< Phi_c^T M T
   Eigen::Matrix3d Mbb_;                        ///< T^T M T (total mass I3)
   Eigen::VectorXd f_;                          ///< [Phi_c; T]^T (F_g - Q_m)
+  Eigen::Matrix<double, Eigen::Dynamic, 9> centrifugal_, gravity_rotation_, elastic_rotation_;
   Eigen::MatrixXd node_rows_;                  ///< 3 nodes x r: node positions of Phi_c
   Eigen::MatrixXd slope_rows_;                 ///< 3 nodes x r: node slopes of Phi_c
   Eigen::PartialPivLU<Eigen::Matrix<double, 6, 6>> kkt_lu_;  ///< the step's 6 x 6 system
