@@ -32,6 +32,11 @@ run large_step_reduced hard_large_step.yaml --set rope.model=reduced --set rope.
 run random_commands hard_random_commands.yaml
 run random_commands_reduced hard_random_commands.yaml --set rope.model=reduced --set rope.mode_count=10
 run falling_rope hard_falling_rope.yaml
+# The reduced rope in the chord's frame (the paper scenes' setting) on the swings and the large step.
+for c in swing_30deg swing_60deg large_step; do
+  run "${c}_reduced_corotational" "hard_$c.yaml" --set rope.model=reduced --set rope.mode_count=10 \
+    --set rope.subdomain_frame=corotational
+done
 # The pendulum rope (the ladder's cheapest rung) on the cases where a straight bar makes sense.
 for c in swing_60deg short_rope_2m slack_throw emergency_stop_slew emergency_stop_trolley \
          hoist_60_3_60 one_hour_undamped large_step random_commands; do

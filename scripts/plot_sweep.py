@@ -2,8 +2,8 @@
 """Plot crane_sim sweep results: payload error against wall time, one panel per scene.
 
 Usage: scripts/plot_sweep.py OUT.png SWEEP.csv [SWEEP.csv ...]
-Full-order runs (time steps), reduced runs (modes, delta, time step) and the pendulum rope are
-drawn with their Pareto fronts (no other setting of the same model is both faster and more
+Full-order runs (time steps), reduced runs (modes, delta, time step; the chord's frame and the
+paper's fixed frame apart) and the pendulum rope are drawn with their Pareto fronts (no other setting of the same model is both faster and more
 accurate); rungs on a rigid structure are crosses; the paper's setting (half the rope DOF) is
 starred. Needs Debian's python3-matplotlib.
 """
@@ -45,25 +45,35 @@ def main():
             ax.scatter([float(r["wall_s"]) for r in rigid],
                        [max(float(r["payload_error_max"]), floor) for r in rigid], c="k",
                        marker="x", s=30, label="rigid structure (any rope)")
-        for model, colour, marker in (("full", "tab:blue", "o"), ("reduced", "tab:orange", "s"),
-                                      ("pendulum", "tab:green", "^")):
+        for model, frame, colour, marker in (
+                ("full", None, "tab:blue", "o"), ("reduced", "corotational", "tab:orange", "s"),
+                ("reduced", "fixed", "tab:purple", "D"), ("pendulum", None, "tab:green", "^")):
             pts = [(float(r["wall_s"]), max(float(r["payload_error_max"]), floor), r)
-                   for r in rs if r["model"] == model and r.get("structure_model") != "rigid"]
+                   for r in rs if r["model"] == model and r.get("structure_model") != "rigid"
+                   and (frame is None or r.get("subdomain_frame", "fixed") == frame)]
             if not pts:
                 continue
             label = "pendulum rope" if model == "pendulum" else f"{model} order"
+            if model == "reduced":
+                label = ("reduced, chord's frame" if frame == "corotational"
+                         else "reduced, fixed frame (paper)")
+                model_label = label
+            else:
+                model_label = model
             ax.scatter([p[0] for p in pts], [p[1] for p in pts], c=colour, marker=marker, s=22,
                        alpha=0.6, label=label)
             front = pareto([(p[0], p[1]) for p in pts])
             ax.plot([p[0] for p in front], [p[1] for p in front], c=colour, lw=1.5,
-                    label=f"{model}: Pareto front")
+                    label=f"{model_label}: Pareto front")
             for w, e, r in pts:
                 if model in ("full", "pendulum"):
                     ax.annotate(f"{float(r['time_step']) * 1e3:g} ms", (w, e), fontsize=7,
                                 xytext=(3, 3), textcoords="offset points")
                 elif int(r["rope_modes"]) > 100:
-                    ax.scatter([w], [e], c="red", marker="*", s=160, zorder=5,
-                               label="paper: 50 % rope modes")
+                    fixed = r.get("subdomain_frame", "fixed") == "fixed"
+                    ax.scatter([w], [e], c="red", marker="*" if not fixed else "P", s=160, zorder=5,
+                               label="paper: 50 % rope modes" + (", fixed frame" if fixed else
+                                                                 ", chord's frame"))
         if ref:
             ax.axvline(float(ref[0]["wall_s"]), c="grey", ls=":", lw=1,
                        label=f"reference ({float(ref[0]['time_step']) * 1e3:g} ms)")
