@@ -94,6 +94,8 @@ TEST(Scene, OutOfRangeIsRefused) {
   expectRefused(p, {"duration=.inf"}, {p, "duration"});
   expectRefused(p, {"integrator.rho_inf=1.2"}, {p, "integrator.rho_inf"});
   expectRefused(p, {"rope.model=ancf"}, {p, "rope.model", "pendulum, full, reduced"});
+  expectRefused(p, {"rope.subdomain_frame=rotating"},
+                {p, "rope.subdomain_frame", "fixed, corotational", "rotating"});
   expectRefused(p, {"time_step=2"}, {p, "time_step", "duration"});
 }
 
