@@ -31,6 +31,7 @@ ReducedSettings settingsFor(const CraneModel& model) {
   s.update = r.mode_update == "cold" ? ModeUpdate::cold : ModeUpdate::warm;
   s.residual_tolerance = r.subdomain_residual;
   s.corotational = r.subdomain_frame == "corotational";
+  s.max_chord_rotation = r.subdomain_rotation;
   return s;
 }
 }  // namespace

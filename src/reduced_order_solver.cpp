@@ -36,6 +36,9 @@ ReducedOrderSolver::ReducedOrderSolver(const AncfRope& rope, RopeSupport& suppor
                                 ", got " + std::to_string(settings_.kept_modes));
   }
   if (!(settings_.delta > 0.0)) throw std::invalid_argument("reduced rope: delta must be > 0");
+  if (!(settings_.max_chord_rotation > 0.0)) {
+    throw std::invalid_argument("reduced rope: the chord rotation bound must be > 0");
+  }
   if (!(time_step > 0.0)) throw std::invalid_argument("time step must be positive");
   settings_.modes.kept = settings_.kept_modes;
 }
@@ -352,7 +355,8 @@ void ReducedOrderSolver::initialize(const CoupledState& full) {
 // the linearisation nothing (Q(e + T u) = Q(e), K T = 0), so a trolley travelling or slewing
 // does not by itself cut subdomains; the swing it excites does. In the chord's frame
 // (corotational) the chord's rotation costs nothing either (header): the criterion reads the
-// deformation W_j = D_j - theta x base_j, and the rotation is bounded by kMaxChordRotation.
+// deformation W_j = D_j - theta x base_j, and the rotation is bounded by
+// settings_.max_chord_rotation.
 double ReducedOrderSolver::maxNodeIncrement() const {
   const int r = static_cast<int>(phi_.cols()), last = rope_.nodes() - 1;
   const Eigen::VectorXd inc = node_rows_ * s_.y.head(r);
@@ -377,7 +381,7 @@ void ReducedOrderSolver::step() {
     G_step_ = G;
   }
   // Residuals scaled by beta h^2 (as the full-order solver's); the system is linear: one solve
-  // (the centrifugal load explicit at the predicted velocity).
+  // (the frame loads, .cpp top, explicit at the predicted state).
   const Eigen::VectorXd f = f_ + frameLoad(s_.y, s_.yd, ydd0);
   Eigen::VectorXd ry(r + 3);
   ry.head(r) = s_.ydd.head(r) + Mcb_ * s_.ydd.tail<3>() + omega2_.cwiseProduct(s_.y.head(r)) -
@@ -408,7 +412,7 @@ void ReducedOrderSolver::step() {
   const bool rotationCut =
       frame_ &&
       chordRotation(node_rows_.middleRows<3>(3 * (rope_.nodes() - 1)) * s_.y.head(r)).theta.norm() >
-          kMaxChordRotation;
+          settings_.max_chord_rotation;
   // The displacement check costs O(n r): with many modes it runs every r / kCheckedModesPerStep
   // steps (the deformation moves little in between; the step is linear, so a late check only
   // lets the subdomain run a few steps past delta).

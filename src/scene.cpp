@@ -82,6 +82,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     r.mode_update = n.string("mode_update", "warm", {"cold", "warm"});
     r.subdomain_residual = n.number("subdomain_residual", 0.0, Bounds::nonNegative());
     r.subdomain_frame = n.string("subdomain_frame", "fixed", {"fixed", "corotational"});
+    r.subdomain_rotation = n.number("subdomain_rotation", 0.1, Bounds::closed(1e-4, 1.0));
     r.damping = n.number("damping", 0.0, Bounds::nonNegative());
     r.mass_per_length = n.number("mass_per_length", def.mass_per_length, Bounds::positive());
     r.axial_stiffness = n.number("axial_stiffness", def.axial_stiffness, Bounds::positive());

@@ -96,6 +96,7 @@ TEST(Scene, OutOfRangeIsRefused) {
   expectRefused(p, {"rope.model=ancf"}, {p, "rope.model", "pendulum, full, reduced"});
   expectRefused(p, {"rope.subdomain_frame=rotating"},
                 {p, "rope.subdomain_frame", "fixed, corotational", "rotating"});
+  expectRefused(p, {"rope.subdomain_rotation=0"}, {p, "rope.subdomain_rotation", "0"});
   expectRefused(p, {"time_step=2"}, {p, "time_step", "duration"});
 }
 

@@ -42,7 +42,8 @@
 // basis rotated with the chord before its update: the modes of R e are R Phi
 // (K(R e) = R K(e) R^T). The dynamics in the frame carry the frame's inertia and the rotation
 // of gravity (.cpp, frameLoad), so the chord's rotation needs no new subdomain: the criterion
-// reads the deformation in the frame, and a rotation past kMaxChordRotation starts one.
+// reads the deformation in the frame, and a rotation past settings.max_chord_rotation starts
+// one.
 // Hoisting subdomains (a step each, BasisUpdate::modes_and_correction or ritz) keep the linear
 // map: measured on the operator cycle, the frame there gave 5.0 m payload error (fixed: 5.6 mm).
 //
@@ -81,6 +82,11 @@ struct ReducedSettings {
   /// finite rotation, and the basis rotated with the chord at a switch. false: the paper's
   /// linear map e = e_m + Phi_c p_c + T u_b as printed.
   bool corotational = false;
+  /// Largest chord rotation within one subdomain [rad] (corotational): the frame leaves out
+  /// terms of order theta times the frame's rates (.cpp), so a swing past this starts a new
+  /// subdomain whatever the deformation. Measured on t8036_slew90 (docs/model.md): 0.1 rad
+  /// 0.051 m, 0.03 rad 5.3e-3 m, 0.01 rad 3.4e-3 m; the paper scenes' 2.3 deg swing fits in 0.1.
+  double max_chord_rotation = 0.1;
   /// Adaptive alternative to delta (issue 4): > 0 starts a new subdomain when the linearisation
   /// residual |Q(e) - Q_m - K_m (e - e_m)| exceeds this force [N] at any node (checked every
   /// `residual_check_steps` steps); delta then only bounds the displacement as a backstop.
@@ -130,10 +136,6 @@ class ReducedOrderSolver {
   void restartAt(const CoupledState& full, bool consistent_accelerations = false,
                  BasisUpdate how = BasisUpdate::modes, const Eigen::VectorXd& load = {});
 
-  /// Largest chord rotation within one subdomain [rad] (corotational): the frame's inertia
-  /// leaves out terms of order theta times the frame's rates (.cpp), so a swing past this
-  /// starts a new subdomain whatever the deformation.
-  static constexpr double kMaxChordRotation = 0.1;
   /// The displacement criterion runs every max(1, r / kCheckedModesPerStep) steps (r kept modes).
   static constexpr int kCheckedModesPerStep = 40;
 

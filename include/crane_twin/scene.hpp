@@ -31,6 +31,7 @@ struct RopeSettings {
   std::string mode_update = "warm";  ///< cold | warm (ReducedSettings)
   double subdomain_residual = 0.0;  ///< [N] > 0: adaptive subdomains (ReducedSettings)
   std::string subdomain_frame = "fixed";  ///< fixed | corotational (ReducedSettings)
+  double subdomain_rotation = 0.1;  ///< [rad] corotational: chord rotation per subdomain
   double damping = 0.0;           ///< stiffness-proportional axial damping coefficient [s]
   double mass_per_length = 1.9;   ///< per fall [kg/m]
   double axial_stiffness = 2.2e7; ///< EA per fall [N]
