@@ -45,10 +45,18 @@ ReducedOrderSolver::ReducedOrderSolver(const AncfRope& rope, RopeSupport& suppor
 
 // theta = c x D_last / |c|^2, R = exp([theta]x), J_l = I + (1 - cos f)/f^2 [theta]x +
 // (f - sin f)/f^3 [theta]x^2 with f = |theta| (header).
+Eigen::Vector3d ReducedOrderSolver::chordAngle(const Eigen::Vector3d& d_last) const {
+  if (!frame_) return Eigen::Vector3d::Zero();
+  return chord_.cross(d_last) / chord_.squaredNorm();
+}
+
+Eigen::Vector3d ReducedOrderSolver::lastNodeDisplacement(const Eigen::VectorXd& x) const {
+  return node_rows_.middleRows<3>(3 * (rope_.nodes() - 1)) * x.head(phi_.cols());
+}
+
 ReducedOrderSolver::ChordRotation ReducedOrderSolver::chordRotation(const Eigen::Vector3d& d_last) const {
   ChordRotation c;
-  if (!frame_) return c;
-  c.theta = chord_.cross(d_last) / chord_.squaredNorm();
+  c.theta = chordAngle(d_last);
   const double f = c.theta.norm();
   if (f == 0.0) return c;
   c.R = Eigen::AngleAxisd(f, c.theta / f).toRotationMatrix();
@@ -105,13 +113,12 @@ void ReducedOrderSolver::prepareFrameLoads(const Eigen::VectorXd& Q) {
 
 Eigen::VectorXd ReducedOrderSolver::frameLoad(const Eigen::VectorXd& y, const Eigen::VectorXd& yd,
                                               const Eigen::VectorXd& ydd) const {
-  const int r = static_cast<int>(phi_.cols()), last = rope_.nodes() - 1;
+  const int r = static_cast<int>(phi_.cols());
   if (!frame_) return Eigen::VectorXd::Zero(r + 3);
-  const auto rows = node_rows_.middleRows<3>(3 * last);
-  const ChordRotation c = chordRotation(rows * y.head(r));
-  const Eigen::Vector3d w = c.J * chordRotation(rows * yd.head(r)).theta;
+  const ChordRotation c = chordRotation(lastNodeDisplacement(y));
+  const Eigen::Vector3d w = c.J * chordAngle(lastNodeDisplacement(yd));
   const Eigen::Vector3d euler =
-      (c.J - Eigen::Matrix3d::Identity()) * chordRotation(rows * ydd.head(r)).theta;
+      (c.J - Eigen::Matrix3d::Identity()) * chordAngle(lastNodeDisplacement(ydd));
   const Eigen::Matrix3d A =
       w * w.transpose() - w.squaredNorm() * Eigen::Matrix3d::Identity() + cross(euler);
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
@@ -132,7 +139,7 @@ Eigen::VectorXd ReducedOrderSolver::centripetalField(const Eigen::VectorXd& v) c
   Eigen::VectorXd a = Eigen::VectorXd::Zero(base_.size());
   if (!frame_) return a;
   const int last = 6 * (rope_.nodes() - 1);
-  const Eigen::Vector3d w = chord_.cross(v.segment<3>(last) - v.head<3>()) / chord_.squaredNorm();
+  const Eigen::Vector3d w = chordAngle(v.segment<3>(last) - v.head<3>());
   for (int k = 0; 3 * k < a.size(); ++k) a.segment<3>(3 * k) = w.cross(w.cross(base_.segment<3>(3 * k)));
   return a;
 }
@@ -204,7 +211,7 @@ void ReducedOrderSolver::startSubdomain(const Eigen::VectorXd& e, BasisUpdate ho
     const Eigen::Matrix3d R =
         Eigen::Quaterniond::FromTwoVectors(basis_chord_, chord).toRotationMatrix();
     rotateBlocks(R, modes_.phi);
-    rotateBlocks(R, phi_);
+    if (how == BasisUpdate::ritz) rotateBlocks(R, phi_);  // other updates rebuild phi_
   }
   if (how == BasisUpdate::ritz && phi_.size() > 0) {
     ritz(K, M);
@@ -360,10 +367,10 @@ void ReducedOrderSolver::initialize(const CoupledState& full) {
 double ReducedOrderSolver::maxNodeIncrement() const {
   const int r = static_cast<int>(phi_.cols()), last = rope_.nodes() - 1;
   const Eigen::VectorXd inc = node_rows_ * s_.y.head(r);
-  const ChordRotation c = chordRotation(inc.segment<3>(3 * last));
+  const Eigen::Vector3d theta = chordAngle(inc.segment<3>(3 * last));
   double worst = 0.0;
   for (int j = 0; j <= last; ++j) {
-    worst = std::max(worst, (inc.segment<3>(3 * j) - c.theta.cross(base_.segment<3>(6 * j))).squaredNorm());
+    worst = std::max(worst, (inc.segment<3>(3 * j) - theta.cross(base_.segment<3>(6 * j))).squaredNorm());
   }
   return std::sqrt(worst);
 }
@@ -411,7 +418,7 @@ void ReducedOrderSolver::step() {
                            linearisationResidual() > settings_.residual_tolerance;
   const bool rotationCut =
       frame_ &&
-      chordRotation(node_rows_.middleRows<3>(3 * (rope_.nodes() - 1)) * s_.y.head(r)).theta.norm() >
+      chordAngle(lastNodeDisplacement(s_.y)).norm() >
           settings_.max_chord_rotation;
   // The displacement check costs O(n r): with many modes it runs every r / kCheckedModesPerStep
   // steps (the deformation moves little in between; the step is linear, so a late check only
@@ -457,7 +464,7 @@ void ReducedOrderSolver::restartAt(const CoupledState& f, bool consistent_accele
 double ReducedOrderSolver::linearisationResidual() const {
   // In the chord's frame the linearisation is about the deformation W = D - theta x base.
   Eigen::VectorXd de = phi_ * s_.y.head(phi_.cols());
-  const Eigen::Vector3d theta = chordRotation(de.segment<3>(6 * (rope_.nodes() - 1))).theta;
+  const Eigen::Vector3d theta = chordAngle(de.segment<3>(6 * (rope_.nodes() - 1)));
   for (int k = 0; 3 * k < de.size(); ++k) de.segment<3>(3 * k) -= theta.cross(base_.segment<3>(3 * k));
   Eigen::VectorXd Q;
   rope_.elasticForce(e_m_ + de, Q);
@@ -480,9 +487,8 @@ CoupledState ReducedOrderSolver::fullStateOf(const ReducedState& st) const {
                         Da = phi_ * st.ydd.head(r), Dg = phi_ * st.ya.head(r);
   const int last = 6 * (rope_.nodes() - 1);
   const ChordRotation c = chordRotation(D.segment<3>(last));
-  const Eigen::Vector3d thv = chordRotation(Dv.segment<3>(last)).theta,
-                        tha = chordRotation(Da.segment<3>(last)).theta,
-                        thg = chordRotation(Dg.segment<3>(last)).theta;
+  const Eigen::Vector3d thv = chordAngle(Dv.segment<3>(last)), tha = chordAngle(Da.segment<3>(last)),
+                        thg = chordAngle(Dg.segment<3>(last));
   const Eigen::Vector3d w = c.J * thv, alpha = c.J * tha, alpha_g = c.J * thg;
   CoupledState f;
   f.t = st.t;
@@ -517,18 +523,15 @@ CoupledState ReducedOrderSolver::fullStateOf(const ReducedState& st) const {
 
 Eigen::Vector3d ReducedOrderSolver::nodePosition(int j) const {
   const int r = static_cast<int>(phi_.cols());
-  const Eigen::VectorXd p = s_.y.head(r);
-  const Eigen::Vector3d b = base_.segment<3>(6 * j), Dj = node_rows_.middleRows<3>(3 * j) * p;
-  const ChordRotation c =
-      chordRotation(node_rows_.middleRows<3>(3 * (rope_.nodes() - 1)) * p);
+  const Eigen::Vector3d b = base_.segment<3>(6 * j), Dj = node_rows_.middleRows<3>(3 * j) * s_.y.head(r);
+  const ChordRotation c = chordRotation(lastNodeDisplacement(s_.y));
   return e_m_.head<3>() + s_.y.tail<3>() + c.R * (b + Dj - c.theta.cross(b));
 }
 
 double ReducedOrderSolver::minNodalStrain() const {
   const int r = static_cast<int>(phi_.cols());
   const Eigen::VectorXd slopes = slope_rows_ * s_.y.head(r);
-  const Eigen::Vector3d theta =
-      chordRotation(node_rows_.middleRows<3>(3 * (rope_.nodes() - 1)) * s_.y.head(r)).theta;
+  const Eigen::Vector3d theta = chordAngle(lastNodeDisplacement(s_.y));
   double least = 1e300;
   for (int j = 0; j < rope_.nodes(); ++j) {
     // |R W| = |W|: the slope's length needs no rotation, only theta.

@@ -171,6 +171,11 @@ class ReducedOrderSolver {
     Eigen::Matrix3d J = Eigen::Matrix3d::Identity();  ///< left Jacobian: omega = J theta'
   };
   ChordRotation chordRotation(const Eigen::Vector3d& last_node_displacement) const;
+  // theta = c x d_last / |c|^2 alone (zero outside the chord's frame): also the rate of theta
+  // for a velocity, of its rate for an acceleration (linear in d_last).
+  Eigen::Vector3d chordAngle(const Eigen::Vector3d& last_node_displacement) const;
+  // The last node's displacement Phi_c x_c for reduced coordinates x (O(r)).
+  Eigen::Vector3d lastNodeDisplacement(const Eigen::VectorXd& x) const;
   // Rotate every node's position and slope rows of `phi` by R (the rope's M is invariant).
   static void rotateBlocks(const Eigen::Matrix3d& R, Eigen::MatrixXd& phi);
   // The loads of the chord's frame (corotational, .cpp): tables per subdomain (Q = Q_m), the
