@@ -1,8 +1,8 @@
 // Cost of one ANCF cable element force + tangent evaluation and of one beam element.
 #include <benchmark/benchmark.h>
 
-#include "crane_twin/ancf_cable_element.hpp"
-#include "crane_twin/timoshenko_beam_element.hpp"
+#include "crane_twin/elements/ancf_cable_element.hpp"
+#include "crane_twin/elements/timoshenko_beam_element.hpp"
 
 using namespace crane_twin;
 

@@ -3,9 +3,9 @@
 // of Newton iterations per step, so the cost of one iteration is time / newton.
 #include <benchmark/benchmark.h>
 
-#include "crane_twin/crane_simulation.hpp"
-#include "crane_twin/reduced_crane_simulation.hpp"
-#include "crane_twin/rope_modes.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/simulation/reduced_crane_simulation.hpp"
+#include "crane_twin/rope/rope_modes.hpp"
 
 using namespace crane_twin;
 

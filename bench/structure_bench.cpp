@@ -1,8 +1,8 @@
 // Cost of building the T8036 structure and of its lowest modes (ARPACK shift-invert + CHOLMOD).
 #include <benchmark/benchmark.h>
 
-#include "crane_twin/modal_analysis.hpp"
-#include "crane_twin/tower_crane_structure.hpp"
+#include "crane_twin/structure/modal_analysis.hpp"
+#include "crane_twin/structure/tower_crane_structure.hpp"
 
 using namespace crane_twin;
 

@@ -3,7 +3,7 @@
 
 Usage: scripts/compare_chrono.py SERIES.csv [CHRONO.csv]
 SERIES.csv from `crane_sim run config/scenes/rope_pendulum_chrono.yaml --out SERIES.csv`;
-CHRONO.csv defaults to ../shared/data/chrono_rope_pendulum/caseA_dt1e-3.csv.
+CHRONO.csv defaults to test/data/chrono_rope_pendulum/caseA_dt1e-3.csv (its README says how it was made).
 Prints the number of common output times and the max |tip x| and |tip z| differences [m].
 """
 import csv
@@ -21,7 +21,7 @@ def main():
         sys.exit(__doc__)
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     chrono = sys.argv[2] if len(sys.argv) == 3 else os.path.join(
-        root, "..", "shared", "data", "chrono_rope_pendulum", "caseA_dt1e-3.csv")
+        root, "test", "data", "chrono_rope_pendulum", "caseA_dt1e-3.csv")
     c, m = rows(chrono, "t"), rows(sys.argv[1], "t")
     ts = sorted(set(c) & set(m))
     if not ts:

@@ -4,7 +4,8 @@
 
 #include <Eigen/Geometry>
 
-#include "crane_twin/ancf_cable_element.hpp"
+#include "crane_twin/elements/ancf_cable_element.hpp"
+#include "crane_twin/elements/gauss_legendre.hpp"
 
 using namespace crane_twin;
 

@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "crane_twin/crane_simulation.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
 
 using namespace crane_twin;
 

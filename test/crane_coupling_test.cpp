@@ -6,8 +6,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "crane_twin/crane_simulation.hpp"
-#include "crane_twin/structure_support.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/structure/structure_support.hpp"
 
 using namespace crane_twin;
 

@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <limits>
 
-#include "crane_twin/config_reader.hpp"
-#include "crane_twin/crane_simulation.hpp"
-#include "crane_twin/reduced_crane_simulation.hpp"
+#include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/simulation/reduced_crane_simulation.hpp"
 
 using namespace crane_twin;
 

@@ -6,11 +6,11 @@
 #include <cmath>
 #include <limits>
 
-#include "crane_twin/command_guard.hpp"
-#include "crane_twin/crane_simulation.hpp"
-#include "crane_twin/crane_snapshot.hpp"
-#include "crane_twin/reduced_crane_simulation.hpp"
-#include "crane_twin/structure_support.hpp"
+#include "crane_twin/drives/command_guard.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/analysis/crane_snapshot.hpp"
+#include "crane_twin/simulation/reduced_crane_simulation.hpp"
+#include "crane_twin/structure/structure_support.hpp"
 
 using namespace crane_twin;
 

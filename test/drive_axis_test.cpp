@@ -2,7 +2,7 @@
 // the closed form of the limited (trapezoidal) speed profile; position limits are never passed.
 #include <gtest/gtest.h>
 
-#include "crane_twin/drive_axis.hpp"
+#include "crane_twin/drives/drive_axis.hpp"
 
 using namespace crane_twin;
 

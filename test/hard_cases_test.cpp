@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "crane_twin/crane_simulation.hpp"
-#include "crane_twin/reduced_crane_simulation.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/simulation/reduced_crane_simulation.hpp"
 
 using namespace crane_twin;
 

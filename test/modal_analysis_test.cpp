@@ -2,8 +2,8 @@
 // the residual / mass-orthonormality checks of SPEC 1.2.
 #include <gtest/gtest.h>
 
-#include "crane_twin/modal_analysis.hpp"
-#include "crane_twin/timoshenko_beam_element.hpp"
+#include "crane_twin/structure/modal_analysis.hpp"
+#include "crane_twin/elements/timoshenko_beam_element.hpp"
 
 using namespace crane_twin;
 

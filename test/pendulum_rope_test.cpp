@@ -7,12 +7,12 @@
 #include <cmath>
 #include <vector>
 
-#include "crane_twin/config_reader.hpp"
-#include "crane_twin/crane_drives.hpp"
-#include "crane_twin/crane_simulation.hpp"
-#include "crane_twin/crane_snapshot.hpp"
-#include "crane_twin/pendulum_crane_simulation.hpp"
-#include "crane_twin/trajectory_compare.hpp"
+#include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/drives/crane_drives.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/analysis/crane_snapshot.hpp"
+#include "crane_twin/simulation/pendulum_crane_simulation.hpp"
+#include "crane_twin/analysis/trajectory_compare.hpp"
 
 using namespace crane_twin;
 

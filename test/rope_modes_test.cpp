@@ -4,8 +4,8 @@
 
 #include <cstdio>
 
-#include "crane_twin/crane_simulation.hpp"
-#include "crane_twin/rope_modes.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/rope/rope_modes.hpp"
 
 using namespace crane_twin;
 

@@ -4,8 +4,8 @@
 
 #include <fstream>
 
-#include "crane_twin/config_reader.hpp"
-#include "crane_twin/scene.hpp"
+#include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/io/scene.hpp"
 
 using namespace crane_twin;
 

@@ -7,10 +7,10 @@
 #include <Eigen/CholmodSupport>
 #include <cmath>
 
-#include "crane_twin/config_reader.hpp"
-#include "crane_twin/crane_simulation.hpp"
-#include "crane_twin/pendulum_crane_simulation.hpp"
-#include "crane_twin/structure_support.hpp"
+#include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/simulation/pendulum_crane_simulation.hpp"
+#include "crane_twin/structure/structure_support.hpp"
 
 using namespace crane_twin;
 

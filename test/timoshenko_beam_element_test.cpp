@@ -6,8 +6,8 @@
 
 #include <Eigen/Geometry>
 
-#include "crane_twin/sparse_assembly.hpp"
-#include "crane_twin/timoshenko_beam_element.hpp"
+#include "crane_twin/elements/sparse_assembly.hpp"
+#include "crane_twin/elements/timoshenko_beam_element.hpp"
 
 using namespace crane_twin;
 

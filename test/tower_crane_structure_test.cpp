@@ -3,9 +3,9 @@
 
 #include <fstream>
 
-#include "crane_twin/config_reader.hpp"
-#include "crane_twin/modal_analysis.hpp"
-#include "crane_twin/tower_crane_structure.hpp"
+#include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/structure/modal_analysis.hpp"
+#include "crane_twin/structure/tower_crane_structure.hpp"
 
 using namespace crane_twin;
 

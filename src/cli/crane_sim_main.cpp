@@ -13,15 +13,15 @@
 #include <string>
 #include <vector>
 
-#include "crane_twin/config_reader.hpp"
-#include "crane_twin/crane_model.hpp"
-#include "crane_twin/modal_analysis.hpp"
-#include "crane_twin/crane_simulation.hpp"
-#include "crane_twin/pendulum_crane_simulation.hpp"
-#include "crane_twin/reduced_crane_simulation.hpp"
-#include "crane_twin/simulation.hpp"
-#include "crane_twin/accuracy_sweep.hpp"
-#include "crane_twin/trajectory_compare.hpp"
+#include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/simulation/crane_model.hpp"
+#include "crane_twin/structure/modal_analysis.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/simulation/pendulum_crane_simulation.hpp"
+#include "crane_twin/simulation/reduced_crane_simulation.hpp"
+#include "crane_twin/simulation/simulation.hpp"
+#include "crane_twin/analysis/accuracy_sweep.hpp"
+#include "crane_twin/analysis/trajectory_compare.hpp"
 
 namespace ct = crane_twin;
 

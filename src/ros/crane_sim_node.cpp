@@ -11,9 +11,9 @@
 #include <cmath>
 #include <sstream>
 
-#include "crane_twin/config_reader.hpp"
-#include "crane_twin/crane_simulation.hpp"
-#include "crane_twin/full_order_solver.hpp"
+#include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/solvers/full_order_solver.hpp"
 #include "ros_messages.hpp"
 
 namespace crane_twin {

@@ -15,10 +15,10 @@
 #include <vector>
 
 #include "crane_twin/CraneCommand.h"
-#include "crane_twin/command_guard.hpp"
-#include "crane_twin/crane_model.hpp"
-#include "crane_twin/crane_snapshot.hpp"
-#include "crane_twin/simulation.hpp"
+#include "crane_twin/drives/command_guard.hpp"
+#include "crane_twin/simulation/crane_model.hpp"
+#include "crane_twin/analysis/crane_snapshot.hpp"
+#include "crane_twin/simulation/simulation.hpp"
 
 namespace crane_twin {
 

@@ -3,7 +3,7 @@
 #include <ros/ros.h>
 
 #include "crane_sim_node.hpp"
-#include "crane_twin/config_reader.hpp"
+#include "crane_twin/io/config_reader.hpp"
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "crane_sim_node");

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "crane_twin/CraneState.h"
-#include "crane_twin/crane_snapshot.hpp"
+#include "crane_twin/analysis/crane_snapshot.hpp"
 
 namespace crane_twin {
 

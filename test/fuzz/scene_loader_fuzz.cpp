@@ -9,8 +9,8 @@
 #include <string>
 #include <unistd.h>
 
-#include "crane_twin/config_reader.hpp"
-#include "crane_twin/scene.hpp"
+#include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/io/scene.hpp"
 
 namespace {
 // <dir>/scenes/fuzz.yaml beside <dir>/cranes -> the repository's crane files, so `crane: t8036`

@@ -1,0 +1,51 @@
+// What a viewer of a running simulation needs at one instant (SPEC 3.2), computed without ROS:
+// the time-series values, the drive joints, the frames of the crane's reference points at
+// their deformed positions, the rope as a curve sampled from its shape functions, and
+// the deformed structure as line segments. The ROS node only converts this to messages.
+//
+// Frames (all right-handed, metres):
+//   world                      z up, origin at the centre of the mast base;
+//   slewing = Rz(theta)        the superstructure's frame, same origin (SPEC 1.4);
+//   jib_tip, cab, trolley      in the slewing frame: undeformed point + displacement u (no
+//                              rotation: the structure is linear, its node rotations small);
+//   hook, payload              in the world frame at the rope's end node, z axis up along the
+//                              rope's last sampled segment (its end tangent). The model lumps hook block
+//                              and payload into one end mass, so both frames share that point.
+#pragma once
+
+#include <Eigen/Geometry>
+#include <vector>
+
+#include "crane_twin/simulation/simulation.hpp"
+
+namespace crane_twin {
+
+struct SnapshotOptions {
+  int samples_per_element = 4;      ///< rope curve points per element (>= 1)
+  double displacement_scale = 1.0;  ///< structure displacement magnification (>= 0)
+  bool structure_segments = true;   ///< build the structure's line segments
+};
+
+struct FramePose {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+};
+
+struct CraneSnapshot {
+  SeriesValues series;
+  // Drive joints: position and speed.
+  double slew_angle = 0.0, slew_rate = 0.0;              ///< rad, rad/s
+  double trolley_radius = 0.0, trolley_speed = 0.0;      ///< m, m/s
+  double rope_length = 0.0, hoist_speed = 0.0;           ///< m, m/s (positive lowers)
+  bool has_crane = false;
+  FramePose slewing;                    ///< in world
+  FramePose jib_tip, cab, trolley;      ///< in slewing
+  FramePose hook, payload;              ///< in world
+  std::vector<Eigen::Vector3d> rope_curve;           ///< world, top to end
+  std::vector<Eigen::Vector3d> structure_segments;   ///< world, pairs (member ends)
+};
+
+/// Snapshot of a running simulation. Throws std::invalid_argument for bad options.
+CraneSnapshot snapshotOf(const Simulation& sim, const SnapshotOptions& options = {});
+
+}  // namespace crane_twin

@@ -1,0 +1,69 @@
+// The three crane drives of a scene (SPEC 1.4): slewing angle theta [rad], trolley radius s [m]
+// and hanging rope length L [m], each a DriveAxis following the active rate command: the
+// scene's `commands:` schedule, or an operator command set at run time (the node-facing API),
+// which overrides the schedule from then on. Whichever rope model a run integrates (pendulum,
+// full, reduced), it moves its support with these drives, so every model of a scene drives the
+// same way.
+#pragma once
+
+#include <optional>
+
+#include "crane_twin/simulation/crane_model.hpp"
+#include "crane_twin/drives/drive_axis.hpp"
+#include "crane_twin/io/scene.hpp"
+#include "crane_twin/simulation/simulation.hpp"
+
+namespace crane_twin {
+
+class CraneDrives {
+ public:
+  /// The scene is referenced (it must outlive the drives). Throws InputError when the schedule
+  /// commands motion without a crane (crane: none), naming the key.
+  explicit CraneDrives(const Scene& scene);
+
+  /// Back to the scene's initial pose, at rest, the manual command cleared.
+  void reset();
+  /// Operator command from now on, overriding the schedule (t is ignored). Throws
+  /// std::invalid_argument for a non-finite rate and InputError for drives without a crane;
+  /// nothing changes then.
+  void setCommand(const CommandEntry& command);
+  /// The command in force at time t: the manual one if set, else the schedule's last entry at
+  /// or before t (zero before the first).
+  CommandEntry activeCommand(double t) const;
+  /// Advance every drive by dt under the command active at t. False (nothing moved) when the
+  /// scene commands no motion.
+  bool advance(double t, double dt);
+
+  /// The scene commands motion, or a command was set.
+  bool active() const { return active_; }
+  /// The schedule or the manual command asks for hoisting.
+  bool hoists() const;
+  double slewAngle() const { return slew_ ? slew_->position() : scene_.slew_angle; }
+  double trolleyRadius() const { return trolley_ ? trolley_->position() : scene_.trolley_radius; }
+  double slewRate() const { return slew_ ? slew_->speed() : 0.0; }
+  /// The slewing acceleration over the last step [rad/s^2].
+  double slewAcceleration() const { return slew_ ? slew_->acceleration() : 0.0; }
+  double trolleySpeed() const { return trolley_ ? trolley_->speed() : 0.0; }
+  double hoistSpeed() const { return hoist_ ? hoist_->speed() : 0.0; }
+  /// The hoist drive's hanging length (the scene's length without a crane) [m].
+  double hoistLength() const { return hoist_ ? hoist_->position() : scene_.rope.length; }
+  /// What limited each drive in the last step (speed or position limits).
+  const DriveFlags& slewFlags() const { return slew_flags_; }
+  const DriveFlags& trolleyFlags() const { return trolley_flags_; }
+  const DriveFlags& hoistFlags() const { return hoist_flags_; }
+
+ private:
+  const Scene& scene_;
+  std::optional<DriveAxis> slew_, trolley_, hoist_;
+  DriveFlags slew_flags_, trolley_flags_, hoist_flags_;
+  bool active_ = false;
+  std::optional<CommandEntry> manual_;
+};
+
+/// The physical warnings of an output row (issue 7) from its rope_top_tension and the drives:
+/// tension_ratio = tension / breaking force of all falls, load_chart_ratio = payload / allowed
+/// load at the current radius, and the warning bits (over breaking force, outside the load
+/// chart, rope length or radius at a limit, a command limited).
+void setCraneWarnings(const CraneModel& model, const CraneDrives& drives, SeriesValues& v);
+
+}  // namespace crane_twin

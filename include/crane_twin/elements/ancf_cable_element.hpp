@@ -1,0 +1,66 @@
+// 3D gradient-deficient ANCF cable element (SPEC 1.1).
+//
+// Element coordinates e = [r1, r1_x, r2, r2_x] (12 values, world frame, m and -):
+// nodal positions and axial slope vectors. With xi = x / l, l the unstretched length,
+//   r(x) = S(x) e,  S = [S1 I, S2 I, S3 I, S4 I],
+//   S1 = 1 - 3 xi^2 + 2 xi^3,  S2 = l (xi - 2 xi^2 + xi^3),
+//   S3 = 3 xi^2 - 2 xi^3,      S4 = l (xi^3 - xi^2).
+// Elastic energy (Euler-Bernoulli, exact curvature with |r_x|^3 in the denominator):
+//   U = 1/2 int EA eps^2 dx + 1/2 int EI kappa^2 dx,
+//   eps = |r_x| - 1,   kappa = |r_x x r_xx| / |r_x|^3.
+// Q = dU/de and K = d2U/de2 are the exact analytic derivatives of U evaluated with the same
+// Gauss rule (default 5 points; see docs/model.md for the quadrature study).
+// Reference: Gerstmayr & Shabana, Nonlinear Dyn. 45 (2006); Yu et al. 2024, eq. (1)-(5).
+#pragma once
+
+#include <Eigen/Dense>
+
+namespace crane_twin {
+
+using Vector12 = Eigen::Matrix<double, 12, 1>;
+using Matrix12 = Eigen::Matrix<double, 12, 12>;
+
+/// Material and geometry of one cable element. Units: m, kg/m, N, N m^2.
+struct AncfCableProperties {
+  double length = 1.0;             ///< unstretched element length l [m]
+  double mass_per_length = 1.0;    ///< rho A [kg/m]
+  double axial_stiffness = 1.0;    ///< EA [N]
+  double bending_stiffness = 0.0;  ///< EI [N m^2]; 0 turns bending off
+  int gauss_points = 5;            ///< quadrature points per element (1..10)
+};
+
+/// Shape function values [S1, S2, S3, S4] at xi in [0, 1] for element length l.
+Eigen::Vector4d ancfShape(double xi, double l);
+/// d/dx of the shape functions (per metre).
+Eigen::Vector4d ancfShapeDx(double xi, double l);
+/// d2/dx2 of the shape functions (per square metre).
+Eigen::Vector4d ancfShapeDxx(double xi, double l);
+
+/// Position r(xi) = S(xi) e.
+Eigen::Vector3d ancfPosition(const Vector12& e, double xi, double l);
+
+/// Constant consistent mass matrix M = int rho A S^T S dx (exact, 4-point Gauss suffices).
+Matrix12 ancfMassMatrix(const AncfCableProperties& p);
+
+/// Generalised gravity force int rho A S^T g dx for a uniform field g [m/s^2].
+Vector12 ancfGravityForce(const AncfCableProperties& p, const Eigen::Vector3d& g);
+
+/// Elastic energy U(e) [J].
+double ancfElasticEnergy(const AncfCableProperties& p, const Vector12& e);
+
+/// Elastic force Q = dU/de and, if K != nullptr, tangent stiffness K = d2U/de2.
+void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12& Q,
+                      Matrix12* K = nullptr);
+
+/// Axial strain-rate damping (Kelvin-Voigt on the axial strain, `rope.damping` = c [s]):
+///   Q_d = int c EA eps' (d eps / d e)^T dx,  eps' = t . r_x',  t = r_x / |r_x|,
+/// dissipating int c EA eps'^2 dx >= 0 and zero for rigid motions. C_d = d Q_d / d e' =
+/// int c EA S_x^T t t^T S_x dx into *C when given (the dependence on e through t is left out
+/// of the iteration matrix).
+void ancfAxialDampingForce(const AncfCableProperties& p, double c, const Vector12& e,
+                           const Vector12& edot, Vector12& Q, Matrix12* C = nullptr);
+
+/// Axial strain eps and curvature kappa at xi (for output and tests).
+void ancfStrainCurvature(const Vector12& e, double xi, double l, double& eps, double& kappa);
+
+}  // namespace crane_twin

@@ -1,0 +1,69 @@
+// The Newton iteration of one generalized-alpha step of a rope held by its support, shared by
+// the full-order (ANCF) and the pendulum solver; only the rope's linear solve differs.
+//
+// Index-3 DAE:  M q'' + Q(q, q') - F_g + C_q^T lambda = 0,      C_q = [I3 0 ...],
+//               M_z z'' + C_z z' + K_z z - D^T lambda = 0,
+//               C(q, z) = r_0 - r_p(z) = 0.
+// Newton on (dq, dz, dmu) with mu = beta h^2 lambda and the equations scaled by beta h^2
+// (Bottasso, Bauchau & Cardona 2008). The support is eliminated by its Schur complement
+// (RopeSupport): dz = A_z^-1 (r_z + D^T dmu), A_z = a M_z + gamma h C_z + beta h^2 K_z, which
+// leaves the rope's system
+//   [ a M + beta h^2 K_t + gamma h C_d   C_q^T ] [dq ]   [ r_q                       ]
+//   [ C_q                                -G    ] [dmu] = [ r_c + D A_z^-1 r_z        ],
+// G = D A_z^-1 D^T, r_q = -beta h^2 (M q'' + Q - F_g + C_q^T lambda), r_c = -(r_0 - r_p(z)),
+// r_z = -beta h^2 (M_z z'' + C_z z' + K_z z - D^T lambda).
+// Converged when max |dq|, |D dz| < position_tolerance and |C| < constraint_tolerance.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "crane_twin/integrators/coupled_state.hpp"
+#include "crane_twin/integrators/generalized_alpha.hpp"
+#include "crane_twin/rope/rope_support.hpp"
+
+namespace crane_twin {
+
+struct NewtonSettings {
+  double position_tolerance = 1e-10;    ///< [m] on max |dq| and |D dz|
+  double constraint_tolerance = 1e-12;  ///< [m] on |C|
+  int max_iterations = 30;
+};
+
+/// The weights of the beta h^2-scaled iteration matrix of a step of size h.
+struct NewtonWeights {
+  double mass = 1.0;       ///< a = (1 - alpha_m)/(1 - alpha_f)
+  double damping = 0.0;    ///< gamma h
+  double stiffness = 0.0;  ///< beta h^2
+  Eigen::Matrix3d G = Eigen::Matrix3d::Zero();  ///< support compliance D A_z^-1 D^T
+};
+
+/// The rope's linear solve at the iterate s: assemble its rows of the system above with the
+/// weights w (r_q from s) and the condensed constraint residual rc = r_c + D A_z^-1 r_z, and
+/// return dq and dmu. False, with the reason in `why`, where the matrix is singular.
+using RopeIncrement = std::function<bool(const CoupledState& s, const NewtonWeights& w,
+                                         const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
+                                         Eigen::Vector3d& dmu, std::string& why)>;
+
+/// One generalized-alpha step of size h from s: predictor, Newton corrections through
+/// `increment`, and step completion. False, with s at the step's start and the reason (with the
+/// time) in `why`, where the iteration fails (singular matrix, non-finite state, no
+/// convergence in newton.max_iterations).
+bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSettings& newton,
+                double h, const RopeIncrement& increment, CoupledState& s, std::string& why);
+
+/// The support part of a Newton correction: dz = A_z^-1 (r_z + D^T dmu) from the condensed
+/// solve (Azr = A_z^-1 r_z), applied to (z, z', z''). Returns max |D dz|, the change at the
+/// support point [m]. No-op returning 0 for a support without coordinates.
+double correctSupport(const GeneralizedAlpha& ga, const RopeSupport& support, double h,
+                      const Eigen::VectorXd& Azr, const Eigen::Vector3d& dmu, CoupledState& s);
+
+/// Close a converged step of size h that started at `start`: the generalized-alpha variables a,
+/// z_a, the time and the iteration count.
+void completeStep(const GeneralizedAlpha& ga, const CoupledState& start, double h, int iterations,
+                  CoupledState& s);
+
+/// |C| = |r_0 - r_p(z)| [m]: how far the rope's top node is from the support point.
+double constraintError(const RopeSupport& support, const CoupledState& s);
+
+}  // namespace crane_twin

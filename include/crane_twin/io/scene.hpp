@@ -1,0 +1,88 @@
+// Scene files (SPEC 2): what to simulate and which effects to include. Every key is validated
+// on load; a wrong type, a value out of range, an unknown key or a missing file raises an
+// InputError naming the file and the dotted key.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "crane_twin/io/crane_description.hpp"
+
+namespace crane_twin {
+
+/// One entry of the operator command schedule, held until the next entry.
+struct CommandEntry {
+  double t = 0.0;
+  double slew_rate = 0.0;      ///< rad/s
+  double trolley_speed = 0.0;  ///< m/s, positive outwards
+  double hoist_speed = 0.0;    ///< m/s of hanging length, positive lowers the load
+};
+
+struct RopeSettings {
+  std::string model = "reduced";  ///< pendulum | full | reduced
+  int elements = 120;
+  double length = 60.0;           ///< hanging length at t = 0 [m]
+  int falls = 2;
+  bool bending = true;
+  double mode_fraction = 0.5;
+  int mode_count = 0;             ///< > 0 overrides mode_fraction
+  double subdomain_delta = 0.05;  ///< [m]
+  std::string mode_update = "warm";  ///< cold | warm (ReducedSettings)
+  double subdomain_residual = 0.0;  ///< [N] > 0: adaptive subdomains (ReducedSettings)
+  std::string subdomain_frame = "fixed";  ///< fixed | corotational (ReducedSettings)
+  double subdomain_rotation = 0.1;  ///< [rad] corotational: chord rotation per subdomain
+  double damping = 0.0;           ///< stiffness-proportional axial damping coefficient [s]
+  double mass_per_length = 1.9;   ///< per fall [kg/m]
+  double axial_stiffness = 2.2e7; ///< EA per fall [N]
+  double bending_stiffness = 78.5;///< EI per fall [N m^2]
+  double breaking_force = 345e3;  ///< per fall [N]
+};
+
+struct Scene {
+  std::string file;
+  std::string crane_name = "none";
+  std::optional<CraneDescription> crane;  ///< empty with crane: none
+  Eigen::Vector3d anchor = Eigen::Vector3d::Zero();
+  double duration = 20.0;
+  double time_step = 0.001;
+  double output_interval = 0.01;
+  std::string integrator = "generalized_alpha";  ///< generalized_alpha | newmark
+  double rho_inf = 0.9;
+  std::string structure_model = "modal";  ///< rigid | modal | full
+  int structure_modes = 100;
+  double structure_damping_ratio = 0.01;
+  RopeSettings rope;
+  double payload_mass = 3600.0;
+  double trolley_radius = 80.0;
+  double slew_angle = 0.0;
+  bool slew_inertial_loads = false;
+  std::string initial_mode = "equilibrium";  ///< equilibrium | stress_free
+  double swing_deg = 2.3;
+  double swing_azimuth_deg = 0.0;
+  Eigen::Vector3d payload_velocity = Eigen::Vector3d::Zero();
+  double gravity = 9.81;
+  std::vector<CommandEntry> commands;
+
+  /// Hook block mass from the crane file (0 with crane: none) [kg].
+  double hookBlockMass() const { return crane ? crane->hook_block_mass : 0.0; }
+};
+
+/// `random_commands:` of a scene (SPEC 6 hard case): a seeded, reproducible schedule.
+struct RandomCommandSpec {
+  int seed = 0;
+  double interval = 1.0;   ///< s between entries
+  double fraction = 1.0;   ///< of each drive's speed limit, (0, 1]
+  bool slew = true, trolley = true, hoist = false;
+};
+
+/// The schedule a RandomCommandSpec stands for over [0, duration).
+std::vector<CommandEntry> randomCommandSchedule(const CraneDescription& crane,
+                                                const RandomCommandSpec& spec, double duration);
+
+/// Load a scene, apply `key.path=value` overrides, validate everything. The crane file named
+/// by `crane:` is looked up as <scene dir>/../cranes/<name>.yaml, or taken as a path when it
+/// ends in .yaml.
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+}  // namespace crane_twin

@@ -1,0 +1,75 @@
+// The hanging hoist rope as a chain of ANCF cable elements (SPEC 1.1), with the hook block and
+// payload as a point mass on the last node and the trolley (when the rope hangs from a crane)
+// as a point mass on the first: the top node coincides with the trolley point through the
+// constraint, so the trolley's inertia and weight act there.
+//
+// Coordinates q (6 per node, node 0 at the top): q = [r_0, r_0x, r_1, r_1x, ..., r_n, r_nx] in
+// the world frame [m, -]. Element k spans nodes k and k+1 and uses q.segment(6k, 12).
+//   M q'' + Q(q) = F_g,   M = sum_k int rho A S^T S dx + m_top (I at r_0) + m_end (I at r_n),
+//   F_g = M g_field
+// (constant: gravity is a uniform field), Q = dU/dq summed over elements.
+#pragma once
+
+#include <Eigen/Sparse>
+#include <vector>
+
+#include "crane_twin/elements/ancf_cable_element.hpp"
+#include "crane_twin/elements/sparse_assembly.hpp"
+
+namespace crane_twin {
+
+class AncfRope {
+ public:
+  /// elements >= 1 of equal unstretched length L / elements; material of the equivalent rope.
+  AncfRope(int elements, double length, double mass_per_length, double axial_stiffness,
+           double bending_stiffness, double end_mass, const Eigen::Vector3d& gravity,
+           double top_mass = 0.0);
+
+  int elements() const { return elements_; }
+  int nodes() const { return elements_ + 1; }
+  int dofs() const { return 6 * (elements_ + 1); }
+  double length() const { return element_.length * elements_; }
+  double endMass() const { return end_mass_; }
+  double topMass() const { return top_mass_; }
+  const Eigen::Vector3d& gravity() const { return gravity_; }
+  const AncfCableProperties& element() const { return element_; }
+  const SparseMatrix& massMatrix() const { return M_; }
+  const Eigen::VectorXd& gravityForce() const { return Fg_; }
+
+  /// Hoisting by uniform rescaling (SPEC 1.4): every element's reference length becomes
+  /// length / elements; M and F_g are rebuilt (rope mass mu L exactly, same pattern). Throws
+  /// std::invalid_argument for a non-positive length.
+  void setLength(double length);
+  /// Rescale a coordinate-like vector (q, v, q'') so the rope's geometry is unchanged under a
+  /// length change from `from` to `to`: positions stay, slopes r_x scale by from / to.
+  static void rescaleSlopes(Eigen::VectorXd& x, double from, double to);
+
+  /// Elastic force Q(q); appends the tangent K(q) as triplets when `tangent` is not null.
+  void elasticForce(const Eigen::VectorXd& q, Eigen::VectorXd& Q,
+                    std::vector<Eigen::Triplet<double>>* tangent = nullptr) const;
+  /// Assembled tangent stiffness K(q) = dQ/dq (n x n); Q(q) into *force when given.
+  SparseMatrix tangentStiffness(const Eigen::VectorXd& q, Eigen::VectorXd* force = nullptr) const;
+  double elasticEnergy(const Eigen::VectorXd& q) const;
+
+  static Eigen::Vector3d nodePosition(const Eigen::VectorXd& q, int node) {
+    return q.segment<3>(6 * node);
+  }
+  /// Straight, unstretched rope from `top` along unit direction d.
+  Eigen::VectorXd straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d) const;
+
+ private:
+  int elements_;
+  AncfCableProperties element_;
+  double end_mass_, top_mass_;
+  Eigen::Vector3d gravity_;
+  SparseMatrix M_;
+  Eigen::VectorXd Fg_;
+  void assembleMass();
+};
+
+/// Points r(x) of an ANCF rope with coordinates q (6 per node) and element length l, sampled
+/// `per_element` times per element plus the end node (SPEC 1.1 shape functions).
+std::vector<Eigen::Vector3d> sampleRopeCurve(const Eigen::VectorXd& q, double l,
+                                             int per_element);
+
+}  // namespace crane_twin

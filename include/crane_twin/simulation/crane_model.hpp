@@ -1,0 +1,38 @@
+// Constant model description built from a scene (Pinocchio's Model): the structure mesh and
+// its matrices (when the scene has a crane), the rope discretisation data, and the masses at
+// the rope end. Everything a simulation mutates lives elsewhere.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "crane_twin/io/scene.hpp"
+#include "crane_twin/structure/tower_crane_structure.hpp"
+
+namespace crane_twin {
+
+/// Equivalent single cable of an n-fall reeving (SPEC 1.1): n EA, n EI and n times the mass
+/// per metre of one fall.
+struct EquivalentRope {
+  double mass_per_length = 0.0;    ///< n mu [kg/m]
+  double axial_stiffness = 0.0;    ///< n EA [N]
+  double bending_stiffness = 0.0;  ///< n EI [N m^2] (0 when rope.bending is false)
+  double breaking_force = 0.0;     ///< n F_break [N]
+};
+
+struct CraneModel {
+  Scene scene;
+  std::optional<TowerCraneStructure> structure;  ///< built unless crane: none
+  EquivalentRope rope;
+  double end_mass = 0.0;  ///< payload + hook block at the rope end [kg]
+
+  /// Rope DOF count of the ANCF discretisation: 6 per node.
+  int ropeDofs() const { return 6 * (scene.rope.elements + 1); }
+  /// Total rope mass of the hanging length [kg].
+  double ropeMass() const { return rope.mass_per_length * scene.rope.length; }
+};
+
+CraneModel buildCraneModel(const Scene& scene);
+
+}  // namespace crane_twin

@@ -1,0 +1,69 @@
+// A scene run at full order (SPEC 1.5): the ANCF rope, what holds it (a fixed anchor for
+// crane: none, the T8036 structure rigid, modal or in full coordinates), the drives (SPEC 1.4:
+// slewing, trolley, hoisting), the initial state of SPEC 2 (equilibrium with a holding force,
+// or stress-free), time stepping, and the SPEC 3.1 output rows. The ROS-free unit the CLI's
+// `run`, `static` and `modes --part rope` use; the reduced model builds on it.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "crane_twin/simulation/supported_rope_simulation.hpp"
+#include "crane_twin/solvers/full_order_solver.hpp"
+#include "crane_twin/structure/modal_analysis.hpp"
+
+namespace crane_twin {
+
+class CraneSimulation final : public SupportedRopeSimulation {
+ public:
+  /// Builds the rope and its support. Integrates at full order whatever rope.model says (the
+  /// reduced model starts from this model's equilibrium and linearises it). Throws InputError
+  /// for what it cannot run (a pendulum scene, drives without a crane, slewing
+  /// loads without a flexible structure), naming the key.
+  explicit CraneSimulation(const CraneModel& model);
+
+  void initialize() override;
+  void step() override;
+  int ropeNodes() const override { return rope_->nodes(); }
+  Eigen::Vector3d ropeNode(int j) const override { return AncfRope::nodePosition(state_.q, j); }
+  std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override;
+  long halvedSteps() const override { return solver_->halvedSteps(); }
+  const AncfRope& rope() const { return *rope_; }
+  const FullOrderSolver& solver() const { return *solver_; }
+  double ropeLength() const override { return rope_->length(); }
+
+  /// The step once the drives have advanced (advanceDrives): the rope to the hoist length, one
+  /// solver step.
+  void stepAfterDrives();
+  /// Bring the rope to the hoist drive's length, rescaling a full-coordinate state with it.
+  void applyRopeLength(CoupledState& s);
+
+  /// Continue from a full-coordinate state (the reduced model hands a slack rope over here).
+  void setState(const CoupledState& s) { state_ = s; }
+
+  /// The initial full-order state of the scene (what initialize() starts from).
+  CoupledState initialState();
+  /// Static equilibrium of the scene (`initial.mode: equilibrium`, holding force included).
+  CoupledState staticState(Eigen::Vector3d* holding_force = nullptr) override;
+  /// Rope modes (with the end mass) linearised at the static equilibrium without holding force:
+  /// top node's position fixed, slope free.
+  ModalBasis ropeModes(int count);
+
+ protected:
+  Eigen::VectorXd straightRope(const Eigen::Vector3d& top,
+                               const Eigen::Vector3d& dir) const override;
+  void initializeAccelerations(CoupledState& s) override;
+  int endPointIndex() const override;
+  double topTensionOf(const CoupledState& s) const override;
+  double energyOf(const CoupledState& s) const override;
+
+ private:
+  std::unique_ptr<AncfRope> rope_;
+  std::unique_ptr<FullOrderSolver> solver_;
+  void resetDrives();
+};
+
+}  // namespace crane_twin

@@ -1,0 +1,47 @@
+// A scene run with the pendulum rope (rope.model: pendulum, docs/scenes.md): the cheapest rung
+// of the fidelity ladder. The same support, drives, initial state and output rows as the ANCF
+// models (SupportedRopeSimulation), with the rope one straight elastic bar (PendulumRope)
+// integrated by PendulumSolver. No ANCF rope is built. Hoisting sets the bar's unstretched
+// length and mass to the hoist drive's length each step.
+#pragma once
+
+#include <memory>
+
+#include "crane_twin/simulation/supported_rope_simulation.hpp"
+#include "crane_twin/solvers/pendulum_solver.hpp"
+
+namespace crane_twin {
+
+class PendulumCraneSimulation final : public SupportedRopeSimulation {
+ public:
+  /// Throws InputError for an inconsistent scene (makeRopeSupport), naming the key.
+  explicit PendulumCraneSimulation(const CraneModel& model);
+
+  void initialize() override;
+  void step() override;
+  int ropeNodes() const override { return 2; }
+  Eigen::Vector3d ropeNode(int j) const override { return state_.q.segment<3>(3 * j); }
+  /// The straight chord, per_element points and the end point.
+  std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override;
+  long halvedSteps() const override { return solver_->halvedSteps(); }
+
+  /// Static equilibrium of the scene (`initial.mode: equilibrium`; the holding force into *H).
+  CoupledState staticState(Eigen::Vector3d* holding_force = nullptr) override;
+  double topTension(const CoupledState& s) const { return solver_->topTension(s); }
+  const PendulumRope& rope() const { return *rope_; }
+
+ protected:
+  Eigen::VectorXd straightRope(const Eigen::Vector3d& top,
+                               const Eigen::Vector3d& dir) const override;
+  void initializeAccelerations(CoupledState& s) override { solver_->initializeAccelerations(s); }
+  int endPointIndex() const override { return 3; }
+  double topTensionOf(const CoupledState& s) const override { return solver_->topTension(s); }
+  double energyOf(const CoupledState& s) const override { return solver_->energy(s); }
+  double ropeLength() const override { return rope_->length(); }
+
+ private:
+  std::unique_ptr<PendulumRope> rope_;
+  std::unique_ptr<PendulumSolver> solver_;
+};
+
+}  // namespace crane_twin

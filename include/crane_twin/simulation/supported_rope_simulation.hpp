@@ -1,0 +1,74 @@
+// The scaffolding every rope model of a scene shares (the ANCF rope at full order and the
+// pendulum rope): the scene's support (a fixed anchor for crane: none, the T8036 structure rigid,
+// modal or in full coordinates), the three drives, the initial state of docs/scenes.md
+// (`initial.mode`: the held equilibrium or the stress-free straight rope, plus
+// `initial.payload_velocity`) and the output row of docs/cli.md. A derived model supplies its
+// rope: the straight and the static state, the consistent accelerations, where the end point
+// sits in q, and the tension and energy of a state.
+#pragma once
+
+#include <memory>
+
+#include "crane_twin/drives/crane_drives.hpp"
+#include "crane_twin/integrators/coupled_state.hpp"
+#include "crane_twin/rope/rope_support.hpp"
+#include "crane_twin/simulation/crane_model.hpp"
+#include "crane_twin/simulation/simulation.hpp"
+
+namespace crane_twin {
+
+class SupportedRopeSimulation : public Simulation {
+ public:
+  double time() const override { return state_.t; }
+  SeriesValues series() const override { return seriesOf(state_); }
+  void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
+              Eigen::Vector3d& jib_tip) const override;
+  CoupledState fullState() const override { return state_; }
+  /// Operator command from now on, overriding the scene's schedule (CraneDrives::setCommand).
+  void setCommand(const CommandEntry& command) override { drives_.setCommand(command); }
+  const CraneDrives& drives() const override { return drives_; }
+  const RopeSupport& support() const override { return *support_; }
+  RopeSupport& support() { return *support_; }
+  const CraneModel& model() const { return model_; }
+  const CoupledState& state() const { return state_; }
+
+  /// The output row of a state in this model's coordinates.
+  SeriesValues seriesOf(const CoupledState& s) const;
+  /// Advance the drives by dt under the active command and move the support to their pose;
+  /// false where nothing moved.
+  bool advanceDrives(double t, double dt);
+  /// Static equilibrium of the scene (`initial.mode: equilibrium`), the holding force on the
+  /// end mass into *holding_force.
+  virtual CoupledState staticState(Eigen::Vector3d* holding_force = nullptr) = 0;
+
+ protected:
+  /// Copies the model and builds its support (makeRopeSupport). Throws InputError.
+  explicit SupportedRopeSimulation(const CraneModel& model);
+  /// Drives at their start, the support at the scene's pose at rest.
+  void resetDrivesAndPose();
+  /// The initial state of the scene at t = 0 (docs/scenes.md, `initial`), accelerations
+  /// consistent. Call after resetDrivesAndPose().
+  CoupledState sceneInitialState();
+
+  /// The rope straight and unstretched from `top` along the unit direction `dir`, at rest.
+  virtual Eigen::VectorXd straightRope(const Eigen::Vector3d& top,
+                                       const Eigen::Vector3d& dir) const = 0;
+  virtual void initializeAccelerations(CoupledState& s) = 0;
+  /// Index in q of the end point's x coordinate.
+  virtual int endPointIndex() const = 0;
+  virtual double topTensionOf(const CoupledState& s) const = 0;
+  virtual double energyOf(const CoupledState& s) const = 0;
+  virtual double ropeLength() const = 0;
+
+  const CraneModel model_;  ///< own copy: callers may pass a temporary
+  CraneDrives drives_;
+  std::unique_ptr<RopeSupport> support_;
+  CoupledState state_;
+};
+
+/// The rope's support for a scene: FixedAnchor (crane: none: the anchor), RigidTrolleySupport
+/// (structure.model: rigid), ModalStructureSupport or FullStructureSupport. Throws InputError
+/// for slewing loads without a flexible structure and for too many structure modes.
+std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model);
+
+}  // namespace crane_twin

@@ -1,0 +1,121 @@
+// Full-order (F-ANCF) dynamics and statics of the rope held by its support (SPEC 1.3, 1.5):
+// a fixed anchor (crane: none) or the crane structure in modal or full coordinates z.
+//
+// Index-3 DAE:  M q'' + Q(q) - F_g - F_ext + C_q^T lambda = 0,
+//               M_z z'' + C_z z' + K_z z - D^T lambda = 0,
+//               C(q, z) = r_0 - r_p(z) = r_0 - (r_p0 + D z) = 0,
+// integrated with generalized-alpha (Arnold & Bruls, Multibody Syst. Dyn. 18, 2007, Alg. 1):
+//   alpha_m = (2 rho - 1)/(rho + 1), alpha_f = rho/(rho + 1), gamma = 1/2 + alpha_f - alpha_m,
+//   beta = (gamma + 1/2)^2 / 4;  Newmark (average acceleration) is alpha_m = alpha_f = 0.
+// Newton on (Delta q, Delta z, Delta mu) with mu = beta h^2 lambda and the equations scaled by
+// beta h^2 (Bottasso, Bauchau & Cardona 2008), so the iteration matrix
+//   [ a M + beta h^2 K_t    0      C_q^T ]      a = (1-alpha_m)/(1-alpha_f)
+//   [ 0                     A_z    -D^T  ]      A_z = a M_z + gamma h C_z + beta h^2 K_z
+//   [ C_q                   -D     0     ]
+// has entries of the order of M whatever the step. The support block is eliminated by its
+// Schur complement (RopeSupport): Delta z = A_z^-1 (r_z + D^T Delta mu), leaving the rope's
+// KKT system with the 3 x 3 block -G = -D A_z^-1 D^T in the multiplier rows (zero for an
+// anchor; constant while the step size is). The rope block is banded; with the three
+// multiplier rows ordered last, a sparse LDL^T in natural order (Eigen's SimplicialLDLT) meets
+// the zero diagonal only after the rope block (the pivot is then the negative Schur complement
+// -C_q A11^-1 C_q^T) and fills in just those three rows. The pattern is analysed once; the
+// values are written in place every iteration and refactorised. Converged when
+// max|Delta q| < position_tolerance (default 1e-10 m) and |C| < constraint_tolerance (1e-12 m).
+#pragma once
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+#include <string>
+
+#include "crane_twin/integrators/coupled_state.hpp"
+#include "crane_twin/integrators/generalized_alpha.hpp"
+#include "crane_twin/integrators/newton_step.hpp"
+#include "crane_twin/integrators/numerical_failure.hpp"
+#include "crane_twin/rope/ancf_rope.hpp"
+#include "crane_twin/rope/rope_support.hpp"
+
+namespace crane_twin {
+
+/// Total mechanical energy of a state: 1/2 v^T M v + U(q) - F_g^T q (gravity potential, zero at
+/// q = 0) plus the support's kinetic and strain energy [J].
+double mechanicalEnergy(const AncfRope& rope, const RopeSupport& support, const CoupledState& s);
+/// Rope top tension [N]: the force between rope and trolley, |lambda + m_top (r_0'' - g)| (the
+/// support force less the trolley mass's weight and inertia).
+double ropeTopTension(const AncfRope& rope, const CoupledState& s);
+
+class FullOrderSolver {
+ public:
+  /// Rope and support are referenced, not copied: they must outlive the solver.
+  FullOrderSolver(const AncfRope& rope, RopeSupport& support, const GeneralizedAlpha& scheme,
+                  double time_step, NewtonSettings newton = {});
+
+  /// Static equilibrium under gravity and a constant force on the end mass, damped Newton from
+  /// (q_guess, z_guess) (q_guess must carry tension: see solveSwingEquilibrium). Returns the
+  /// state at rest (v = 0); -lambda is the support force on the rope.
+  CoupledState solveStatic(const Eigen::VectorXd& q_guess, const Eigen::VectorXd& z_guess,
+                           const Eigen::Vector3d& end_force);
+
+  /// Equilibrium whose chord (top node to end node) makes swing_rad with the vertical at
+  /// azimuth az_rad, held by a horizontal force on the end mass (secant on the force). SPEC 2.
+  CoupledState solveSwingEquilibrium(double swing_rad, double az_rad,
+                                  Eigen::Vector3d* holding_force = nullptr);
+
+  /// Consistent accelerations of a state (q, v, z, zd given) at release: solves the KKT system
+  /// with the constraint's second derivative r_0'' - D z'' = 0.
+  void initializeAccelerations(CoupledState& s);
+
+  /// One generalized-alpha step of size h; where Newton fails, the step is halved (up to
+  /// kMaxHalvings times). Throws NumericalFailure naming the time and the reason; s is then
+  /// left at the step's start.
+  void step(CoupledState& s);
+  static constexpr int kMaxHalvings = 6;
+  /// Axial strain-rate damping of the rope, c [s] (ancfAxialDampingForce; 0: none). Throws
+  /// std::invalid_argument for a negative or non-finite c.
+  void setRopeDamping(double c);
+  /// Half steps taken so far in place of failed steps (0 in a smooth run).
+  long halvedSteps() const { return halved_steps_; }
+
+  /// Re-read the rope's mass matrix after AncfRope::setLength (same pattern).
+  void refreshMass();
+
+  /// Total mechanical energy: 1/2 v^T M v + U(q) - F_g^T q (gravity potential, zero at q = 0)
+  /// plus the support's kinetic and strain energy.
+  double energy(const CoupledState& s) const;
+  /// Rope top tension [N]: the force between rope and trolley, |lambda + m_top (r_0'' - g)|
+  /// (the support force less the trolley mass's weight and inertia).
+  double topTension(const CoupledState& s) const;
+  /// |C| = |r_0 - r_p(z)| [m].
+  double constraintError(const CoupledState& s) const;
+
+  const AncfRope& rope() const { return rope_; }
+  const RopeSupport& support() const { return support_; }
+  double timeStep() const { return h_; }
+
+ private:
+  // Fill the values of A_ (fixed pattern, -G in the multiplier block) and the internal force Q:
+  // elastic, plus the axial damping force at velocity v with dampWeight x C_d in A_.
+  void assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double massWeight,
+                double stiffWeight, double dampWeight, const Eigen::Matrix3d& G,
+                Eigen::VectorXd& Q);
+  // Recover (dq, dz, dy) from the reduced solution x = [dq; dy] of A_ x = [r_q; r_c + D A_z^-1 r_z].
+  Eigen::VectorXd condensedRhs(const Eigen::VectorXd& rq, const Eigen::VectorXd& rz,
+                               const Eigen::Vector3d& rc, Eigen::VectorXd& Azinv_rz) const;
+  // Factorise A_; throws NumericalFailure with `what` on failure.
+  void factorize(const std::string& what);
+  // One step of size h from s; false (s unchanged, the reason in why) where Newton fails.
+  bool tryStep(CoupledState& s, double h, std::string& why);
+  long halved_steps_ = 0;
+  double rope_damping_ = 0.0;
+  const AncfRope& rope_;
+  RopeSupport& support_;
+  GeneralizedAlpha ga_;
+  double h_;
+  NewtonSettings newton_;
+  SparseMatrix A_;  ///< KKT iteration matrix, pattern fixed at construction
+  std::vector<int> mass_index_;   ///< value slot of each mass entry (in M's order)
+  std::vector<double> mass_value_;
+  std::vector<int> element_index_;  ///< 144 value slots per element, column-major 12 x 12
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt_;
+};
+
+}  // namespace crane_twin

@@ -1,0 +1,64 @@
+// Dynamics and statics of the pendulum rope (PendulumRope) held by its support: the same
+// index-3 DAE, generalized-alpha scheme, scaling and support elimination as FullOrderSolver
+// (see there), with the rope block a dense 6 x 6:
+//   M q'' + Q(q) + Q_d(q, q') - F_g + C_q^T lambda = 0,   C_q = [I 0],
+//   M_z z'' + C_z z' + K_z z - D^T lambda = 0,
+//   C = r_0 - r_p(z) = 0.
+// Newton on (dq, dmu), mu = beta h^2 lambda, with the 9 x 9 iteration matrix
+//   [ a M + beta h^2 K + gamma h C_d   C_q^T ]
+//   [ C_q                              -G    ],   G = D A_z^-1 D^T,
+// solved by a pivoting dense LU. Where Newton fails (a slack rope snapping taut) the step is
+// halved, as at full order. Statics are closed form: the bar is straight and the support linear.
+#pragma once
+
+#include <string>
+
+#include "crane_twin/integrators/coupled_state.hpp"
+#include "crane_twin/integrators/generalized_alpha.hpp"
+#include "crane_twin/integrators/newton_step.hpp"
+#include "crane_twin/integrators/numerical_failure.hpp"
+#include "crane_twin/rope/pendulum_rope.hpp"
+
+namespace crane_twin {
+
+class PendulumSolver {
+ public:
+  /// Rope and support are referenced: they must outlive the solver.
+  PendulumSolver(const PendulumRope& rope, RopeSupport& support, const GeneralizedAlpha& scheme,
+                 double time_step, NewtonSettings newton = {});
+
+  /// Static equilibrium with the chord at swing_rad from the vertical (azimuth az_rad), held by
+  /// a horizontal force H on the end point (SPEC 2): the end point's balance gives
+  /// tan(swing) = H / ((m_end + mu L / 2) g) and T = (m_end + mu L / 2) g / cos(swing); the
+  /// support deflects under lambda = F_g,0 + T u (K_z z = D^T lambda). State at rest.
+  CoupledState solveSwingEquilibrium(double swing_rad, double az_rad,
+                                     Eigen::Vector3d* holding_force = nullptr);
+  /// Consistent accelerations (q, v, z, zd given).
+  void initializeAccelerations(CoupledState& s);
+  /// One step of the time step, halved where Newton fails (kMaxHalvings).
+  /// Throws NumericalFailure naming the time and the reason; s is then left unchanged.
+  void step(CoupledState& s);
+  /// Axial damping coefficient c [s] (0: none). Throws std::invalid_argument for c < 0.
+  void setRopeDamping(double c);
+  static constexpr int kMaxHalvings = 6;
+  long halvedSteps() const { return halved_steps_; }
+  double timeStep() const { return h_; }
+
+  /// 1/2 v^T M v + U(q) - F_g^T q + the support's energy [J].
+  double energy(const CoupledState& s) const;
+  /// |lambda + m_top (r_0'' - g)|: the force between rope and trolley [N].
+  double topTension(const CoupledState& s) const;
+  double constraintError(const CoupledState& s) const;
+
+ private:
+  bool tryStep(CoupledState& s, double h, std::string& why);
+  const PendulumRope& rope_;
+  RopeSupport& support_;
+  GeneralizedAlpha ga_;
+  double h_;
+  NewtonSettings newton_;
+  double damping_ = 0.0;
+  long halved_steps_ = 0;
+};
+
+}  // namespace crane_twin

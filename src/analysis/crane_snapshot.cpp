@@ -1,0 +1,77 @@
+#include "crane_twin/analysis/crane_snapshot.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "crane_twin/drives/crane_drives.hpp"
+#include "crane_twin/solvers/full_order_solver.hpp"
+#include "crane_twin/rope/rope_support.hpp"
+#include "crane_twin/structure/structure_support.hpp"
+
+namespace crane_twin {
+
+namespace {
+
+// Rotation taking the z axis onto the unit vector a.
+Eigen::Quaterniond zAxisAlong(const Eigen::Vector3d& a) {
+  return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), a);
+}
+
+}  // namespace
+
+CraneSnapshot snapshotOf(const Simulation& sim, const SnapshotOptions& options) {
+  if (!(options.displacement_scale >= 0.0) || !std::isfinite(options.displacement_scale)) {
+    throw std::invalid_argument("displacement scale must be finite and >= 0");
+  }
+  if (options.samples_per_element < 1) {
+    throw std::invalid_argument("rope samples per element must be >= 1");
+  }
+  const CraneDrives& drives = sim.drives();
+  const RopeSupport& support = sim.support();
+  CraneSnapshot s;
+  s.series = sim.series();
+  s.slew_angle = drives.slewAngle();
+  s.slew_rate = drives.slewRate();
+  s.trolley_radius = drives.trolleyRadius();
+  s.trolley_speed = drives.trolleySpeed();
+  s.rope_length = s.series.rope_length;
+  s.hoist_speed = drives.hoistSpeed();
+
+  s.rope_curve = sim.ropeCurve(options.samples_per_element);
+  // The hook's z axis along the rope's last sampled segment, pointing up the rope.
+  const Eigen::Vector3d up = s.rope_curve[s.rope_curve.size() - 2] - s.rope_curve.back();
+  s.hook.position = s.rope_curve.back();
+  s.hook.orientation = up.norm() > 0.0 ? zAxisAlong(up.normalized()) : Eigen::Quaterniond::Identity();
+  s.payload = s.hook;
+
+  const Eigen::Matrix3d R = slewRotation(s.slew_angle);
+  s.slewing.orientation = Eigen::Quaterniond(R);
+  const TowerCraneStructure* structure = support.structure();
+  s.has_crane = structure != nullptr;
+  if (!structure) {
+    // crane: none: the anchor stands for the trolley, in the world (= slewing) frame.
+    s.trolley.position = s.series.trolley;
+    return s;
+  }
+  s.trolley.position = R.transpose() * s.series.trolley;
+  Eigen::Vector3d tip0 = Eigen::Vector3d::Zero();
+  for (int n : structure->jib_tip_nodes) tip0 += structure->nodes[n];
+  tip0 /= static_cast<double>(structure->jib_tip_nodes.size());
+  s.jib_tip.position = tip0 + s.series.jib_tip;
+  s.cab.position = structure->nodes[structure->cab_node] + s.series.cab;
+  if (options.structure_segments) {
+    const Eigen::VectorXd u = support.structureDisplacement(sim.fullState().z);
+    const double scale = options.displacement_scale;
+    auto world = [&](int n) {
+      return Eigen::Vector3d(R * (structure->nodes[n] + scale * structure->nodeDisplacement(u, n)));
+    };
+    s.structure_segments.reserve(2 * structure->members.size());
+    for (const StructureMember& m : structure->members) {
+      s.structure_segments.push_back(world(m.node1));
+      s.structure_segments.push_back(world(m.node2));
+    }
+  }
+  return s;
+}
+
+}  // namespace crane_twin

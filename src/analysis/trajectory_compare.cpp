@@ -1,0 +1,155 @@
+#include "crane_twin/analysis/trajectory_compare.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "crane_twin/io/config_reader.hpp"
+
+namespace crane_twin {
+
+namespace {
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> v;
+  std::stringstream ss(line);
+  for (std::string x; std::getline(ss, x, ',');) v.push_back(x);
+  if (!line.empty() && line.back() == ',') v.push_back("");
+  return v;
+}
+
+double parseNumber(const std::string& s, const std::string& file, int line,
+                   const std::string& column) {
+  std::size_t used = 0;
+  double v = 0.0;
+  try {
+    v = std::stod(s, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != s.size() || !std::isfinite(v)) {
+    throw InputError(file + ": line " + std::to_string(line) + ", column '" + column +
+                     "': not a finite number: '" + s + "'");
+  }
+  return v;
+}
+
+// Rows of a CSV as numbers keyed by the named columns.
+std::vector<std::vector<double>> readColumns(const std::string& file,
+                                             const std::vector<std::string>& wanted) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file + ": cannot open for reading");
+  std::string line;
+  if (!std::getline(in, line)) throw InputError(file + ": empty file (no header row)");
+  const std::vector<std::string> header = splitCsv(line);
+  std::vector<int> index;
+  for (const auto& w : wanted) {
+    int k = -1;
+    for (std::size_t i = 0; i < header.size(); ++i)
+      if (header[i] == w) k = static_cast<int>(i);
+    if (k < 0) throw InputError(file + ": header has no column '" + w + "'");
+    index.push_back(k);
+  }
+  std::vector<std::vector<double>> rows;
+  int lineNo = 1;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    if (line.empty()) continue;
+    const std::vector<std::string> f = splitCsv(line);
+    if (f.size() != header.size()) {
+      throw InputError(file + ": line " + std::to_string(lineNo) + ": " + std::to_string(f.size()) +
+                       " fields, header has " + std::to_string(header.size()));
+    }
+    std::vector<double> r;
+    for (std::size_t i = 0; i < index.size(); ++i) {
+      r.push_back(parseNumber(f[index[i]], file, lineNo, wanted[i]));
+    }
+    rows.push_back(std::move(r));
+  }
+  if (rows.empty()) throw InputError(file + ": no data rows");
+  return rows;
+}
+
+}  // namespace
+
+Trajectory readTrajectory(const std::string& series_csv, const std::string& nodes_csv) {
+  const auto rows = readColumns(
+      series_csv, {"t", "payload_x", "payload_y", "payload_z", "cab_dx", "cab_dy", "cab_dz",
+                   "jib_tip_dx", "jib_tip_dy", "jib_tip_dz", "rope_length"});
+  Trajectory tr;
+  for (const auto& r : rows) {
+    tr.t.push_back(r[0]);
+    tr.payload.emplace_back(r[1], r[2], r[3]);
+    tr.cab.emplace_back(r[4], r[5], r[6]);
+    tr.jib_tip.emplace_back(r[7], r[8], r[9]);
+  }
+  tr.rope_length = rows.front()[10];
+  if (nodes_csv.empty()) return tr;
+  const auto nrows = readColumns(nodes_csv, {"t", "node", "x", "y", "z"});
+  std::map<long, std::vector<Eigen::Vector3d>> byTime;
+  for (const auto& r : nrows) {
+    auto& v = byTime[std::lround(r[0] * 1e9)];
+    if (r[1] != static_cast<double>(v.size())) {
+      throw InputError(nodes_csv + ": nodes at t = " + std::to_string(r[0]) +
+                       " are not numbered 0, 1, 2, ... in order");
+    }
+    v.emplace_back(r[2], r[3], r[4]);
+  }
+  for (double t : tr.t) {
+    const auto it = byTime.find(std::lround(t * 1e9));
+    if (it == byTime.end()) {
+      throw InputError(nodes_csv + ": no nodes at t = " + std::to_string(t) + " of " + series_csv);
+    }
+    tr.nodes.push_back(it->second);
+  }
+  return tr;
+}
+
+std::vector<Eigen::Vector3d> resampleRope(const std::vector<Eigen::Vector3d>& nodes, std::size_t n) {
+  if (nodes.size() < 2 || n < 2) {
+    throw InputError("a rope needs at least 2 nodes to compare, got " + std::to_string(nodes.size()) +
+                     " and " + std::to_string(n));
+  }
+  std::vector<Eigen::Vector3d> out(n);
+  const double last = static_cast<double>(nodes.size() - 1);
+  for (std::size_t j = 0; j < n; ++j) {
+    const double x = last * static_cast<double>(j) / static_cast<double>(n - 1);  // coarse index
+    const std::size_t k = std::min(static_cast<std::size_t>(x), nodes.size() - 2);
+    const double w = x - static_cast<double>(k);
+    out[j] = (1.0 - w) * nodes[k] + w * nodes[k + 1];
+  }
+  return out;
+}
+
+ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b) {
+  std::map<long, std::size_t> bIndex;
+  for (std::size_t i = 0; i < b.t.size(); ++i) bIndex[std::lround(b.t[i] * 1e9)] = i;
+  const bool withNodes = !a.nodes.empty() && !b.nodes.empty();
+  ErrorMetrics m;
+  if (withNodes) m.rope_rms_max = 0.0;
+  for (std::size_t i = 0; i < a.t.size(); ++i) {
+    const auto it = bIndex.find(std::lround(a.t[i] * 1e9));
+    if (it == bIndex.end()) continue;
+    const std::size_t j = it->second;
+    ++m.common_times;
+    m.payload_max = std::max(m.payload_max, (a.payload[i] - b.payload[j]).norm());
+    m.cab_max = std::max(m.cab_max, (a.cab[i] - b.cab[j]).norm());
+    m.jib_tip_max = std::max(m.jib_tip_max, (a.jib_tip[i] - b.jib_tip[j]).norm());
+    if (withNodes) {
+      const std::size_t n = std::max(a.nodes[i].size(), b.nodes[j].size());
+      const auto ra = a.nodes[i].size() == n ? a.nodes[i] : resampleRope(a.nodes[i], n);
+      const auto rb = b.nodes[j].size() == n ? b.nodes[j] : resampleRope(b.nodes[j], n);
+      double s = 0.0;
+      for (std::size_t k = 0; k < n; ++k) s += (ra[k] - rb[k]).squaredNorm();
+      m.rope_rms_max = std::max(m.rope_rms_max, std::sqrt(s / n));
+    }
+  }
+  if (m.common_times == 0) throw InputError("the two runs share no output time");
+  const double L = b.rope_length > 0.0 ? b.rope_length : a.rope_length;
+  m.rope_length = L;
+  m.payload_relative = L > 0.0 ? m.payload_max / L : 0.0;
+  return m;
+}
+
+}  // namespace crane_twin

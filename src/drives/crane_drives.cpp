@@ -1,0 +1,88 @@
+#include "crane_twin/drives/crane_drives.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "crane_twin/io/config_reader.hpp"
+
+namespace crane_twin {
+
+namespace {
+bool moves(const CommandEntry& c) {
+  return c.slew_rate != 0.0 || c.trolley_speed != 0.0 || c.hoist_speed != 0.0;
+}
+}  // namespace
+
+CraneDrives::CraneDrives(const Scene& scene) : scene_(scene) {
+  for (const auto& c : scene.commands) {
+    if (!moves(c)) continue;
+    if (!scene.crane) {
+      throw InputError(scene.file + ": key 'commands': drives need a crane (crane: none has none)");
+    }
+    active_ = true;
+  }
+  reset();
+}
+
+void CraneDrives::reset() {
+  manual_.reset();
+  slew_flags_ = trolley_flags_ = hoist_flags_ = DriveFlags{};
+  if (!scene_.crane) return;
+  const CraneDescription& c = *scene_.crane;
+  slew_.emplace(c.slewing, scene_.slew_angle);
+  trolley_.emplace(c.trolley, scene_.trolley_radius, c.min_radius, c.max_radius);
+  hoist_.emplace(c.hoist, scene_.rope.length, c.min_rope_length, c.max_rope_length);
+}
+
+void CraneDrives::setCommand(const CommandEntry& c) {
+  if (!std::isfinite(c.slew_rate) || !std::isfinite(c.trolley_speed) ||
+      !std::isfinite(c.hoist_speed)) {
+    throw std::invalid_argument("command with a non-finite rate");
+  }
+  if (!scene_.crane && moves(c)) {
+    throw InputError("drives need a crane (crane: none has none)");
+  }
+  manual_ = c;
+  active_ = true;
+}
+
+bool CraneDrives::hoists() const {
+  if (manual_ && manual_->hoist_speed != 0.0) return true;
+  for (const auto& c : scene_.commands)
+    if (c.hoist_speed != 0.0) return true;
+  return false;
+}
+
+CommandEntry CraneDrives::activeCommand(double t) const {
+  if (manual_) return *manual_;
+  CommandEntry active;
+  for (const auto& c : scene_.commands) {
+    if (c.t <= t + 1e-9) active = c;
+  }
+  return active;
+}
+
+bool CraneDrives::advance(double t, double dt) {
+  if (!active_ || !slew_) return false;
+  const CommandEntry c = activeCommand(t);
+  slew_flags_ = slew_->advance(c.slew_rate, dt);
+  trolley_flags_ = trolley_->advance(c.trolley_speed, dt);
+  hoist_flags_ = hoist_->advance(c.hoist_speed, dt);
+  return true;
+}
+
+void setCraneWarnings(const CraneModel& model, const CraneDrives& drives, SeriesValues& v) {
+  const Scene& sc = model.scene;
+  v.tension_ratio = v.rope_top_tension / model.rope.breaking_force;
+  if (v.tension_ratio > 1.0) v.warnings |= kTensionOverBreakingForce;
+  if (sc.crane) {
+    v.load_chart_ratio = sc.payload_mass / allowedLoad(*sc.crane, drives.trolleyRadius());
+    if (v.load_chart_ratio > 1.0 + 1e-12) v.warnings |= kOutsideLoadChart;
+  }
+  const DriveFlags &s = drives.slewFlags(), &t = drives.trolleyFlags(), &h = drives.hoistFlags();
+  if (h.at_position_limit) v.warnings |= kRopeLengthAtLimit;
+  if (t.at_position_limit) v.warnings |= kTrolleyAtLimit;
+  if (s.speed_limited || t.speed_limited || h.speed_limited) v.warnings |= kCommandLimited;
+}
+
+}  // namespace crane_twin

@@ -1,0 +1,189 @@
+#include "crane_twin/elements/ancf_cable_element.hpp"
+
+#include "crane_twin/elements/gauss_legendre.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace crane_twin {
+
+namespace {
+// Gauss rules are computed once per point count: the element routines run in the hot loop.
+struct GaussRule {
+  Eigen::VectorXd x, w;
+};
+const GaussRule& gaussRule(int n) {
+  static const std::vector<GaussRule> rules = [] {
+    std::vector<GaussRule> r(11);
+    for (int k = 1; k <= 10; ++k) gaussLegendre01(k, r[k].x, r[k].w);
+    return r;
+  }();
+  if (n < 1 || n > 10) {
+    throw std::invalid_argument("gauss points must be in 1..10, got " + std::to_string(n));
+  }
+  return rules[n];
+}
+}  // namespace
+
+Eigen::Vector4d ancfShape(double xi, double l) {
+  const double x2 = xi * xi, x3 = x2 * xi;
+  return {1.0 - 3.0 * x2 + 2.0 * x3, l * (xi - 2.0 * x2 + x3), 3.0 * x2 - 2.0 * x3,
+          l * (x3 - x2)};
+}
+
+Eigen::Vector4d ancfShapeDx(double xi, double l) {
+  const double x2 = xi * xi;
+  return {(-6.0 * xi + 6.0 * x2) / l, 1.0 - 4.0 * xi + 3.0 * x2, (6.0 * xi - 6.0 * x2) / l,
+          3.0 * x2 - 2.0 * xi};
+}
+
+Eigen::Vector4d ancfShapeDxx(double xi, double l) {
+  return {(-6.0 + 12.0 * xi) / (l * l), (-4.0 + 6.0 * xi) / l, (6.0 - 12.0 * xi) / (l * l),
+          (6.0 * xi - 2.0) / l};
+}
+
+namespace {
+
+// v = sum_k s(k) * e.segment<3>(3k)
+Eigen::Vector3d combine(const Eigen::Vector4d& s, const Vector12& e) {
+  return s(0) * e.segment<3>(0) + s(1) * e.segment<3>(3) + s(2) * e.segment<3>(6) +
+         s(3) * e.segment<3>(9);
+}
+
+// K += w * Sa^T H Sb where Sa = [sa_k I], Sb = [sb_k I] and H is 3x3.
+void addOuter(const Eigen::Vector4d& sa, const Eigen::Vector4d& sb, const Eigen::Matrix3d& H,
+              double w, Matrix12& K) {
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) K.block<3, 3>(3 * i, 3 * j) += (w * sa(i) * sb(j)) * H;
+}
+
+// Q += w * Sa^T v
+void addVec(const Eigen::Vector4d& sa, const Eigen::Vector3d& v, double w, Vector12& Q) {
+  for (int i = 0; i < 4; ++i) Q.segment<3>(3 * i) += (w * sa(i)) * v;
+}
+
+}  // namespace
+
+Eigen::Vector3d ancfPosition(const Vector12& e, double xi, double l) {
+  return combine(ancfShape(xi, l), e);
+}
+
+Matrix12 ancfMassMatrix(const AncfCableProperties& p) {
+  const GaussRule& gr = gaussRule(4);  // S^T S is a degree-6 polynomial: exact
+  const Eigen::VectorXd &xg = gr.x, &wg = gr.w;
+  Matrix12 M = Matrix12::Zero();
+  for (int g = 0; g < xg.size(); ++g) {
+    const Eigen::Vector4d s = ancfShape(xg(g), p.length);
+    addOuter(s, s, Eigen::Matrix3d::Identity(), wg(g) * p.length * p.mass_per_length, M);
+  }
+  return M;
+}
+
+Vector12 ancfGravityForce(const AncfCableProperties& p, const Eigen::Vector3d& g) {
+  // int S dx = l [1/2, l/12, 1/2, -l/12]
+  const double l = p.length, m = p.mass_per_length;
+  Vector12 f;
+  f << 0.5 * l * g, l * l / 12.0 * g, 0.5 * l * g, -l * l / 12.0 * g;
+  return m * f;
+}
+
+void ancfStrainCurvature(const Vector12& e, double xi, double l, double& eps, double& kappa) {
+  const Eigen::Vector3d a = combine(ancfShapeDx(xi, l), e);
+  const Eigen::Vector3d b = combine(ancfShapeDxx(xi, l), e);
+  const double g = a.norm();
+  eps = g - 1.0;
+  kappa = a.cross(b).norm() / (g * g * g);
+}
+
+double ancfElasticEnergy(const AncfCableProperties& p, const Vector12& e) {
+  const GaussRule& gr = gaussRule(p.gauss_points);
+  const Eigen::VectorXd &xg = gr.x, &wg = gr.w;
+  double U = 0.0;
+  for (int q = 0; q < xg.size(); ++q) {
+    double eps, kappa;
+    ancfStrainCurvature(e, xg(q), p.length, eps, kappa);
+    U += wg(q) * p.length * 0.5 *
+         (p.axial_stiffness * eps * eps + p.bending_stiffness * kappa * kappa);
+  }
+  return U;
+}
+
+void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12& Q,
+                      Matrix12* K) {
+  const GaussRule& gr = gaussRule(p.gauss_points);
+  const Eigen::VectorXd &xg = gr.x, &wg = gr.w;
+  Q.setZero();
+  if (K) K->setZero();
+  const double EA = p.axial_stiffness, EI = p.bending_stiffness, l = p.length;
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  for (int q = 0; q < xg.size(); ++q) {
+    const double w = wg(q) * l;
+    const Eigen::Vector4d sx = ancfShapeDx(xg(q), l);
+    const Eigen::Vector4d sxx = ancfShapeDxx(xg(q), l);
+    const Eigen::Vector3d a = combine(sx, e);   // r_x
+    const Eigen::Vector3d b = combine(sxx, e);  // r_xx
+    const double h = a.squaredNorm();
+    const double g = std::sqrt(h);
+
+    // Axial: phi = EA/2 (g - 1)^2; phi_a = EA (1 - 1/g) a;
+    // phi_aa = EA [(1 - 1/g) I + a a^T / g^3].
+    // The Hessian of the energy density in (a, b) = (r_x, r_xx) is the symmetric 6 x 6
+    // P = [Paa Pab; Pab^T Pbb]; block (i, j) of the tangent gains
+    // w (sx_i sx_j Paa + sx_i sxx_j Pab + sxx_i sx_j Pab^T + sxx_i sxx_j Pbb), computed for
+    // j >= i only and mirrored (the profiled hot spot was one 3 x 3 update per term and pair).
+    Eigen::Matrix3d Paa;
+    if (K) Paa = EA * ((1.0 - 1.0 / g) * I3 + a * a.transpose() / (h * g));
+    if (EI == 0.0) {
+      addVec(sx, EA * (1.0 - 1.0 / g) * a, w, Q);
+      if (K) addOuter(sx, sx, Paa, w, *K);
+      continue;
+    }
+    // Bending: phi = EI/2 f h^-3, f = |a x b|^2 = (a.a)(b.b) - (a.b)^2, h = a.a.
+    const double ab = a.dot(b), bb = b.dot(b);
+    const double f = h * bb - ab * ab;
+    const Eigen::Vector3d fa = 2.0 * bb * a - 2.0 * ab * b;
+    const Eigen::Vector3d fb = 2.0 * h * b - 2.0 * ab * a;
+    const Eigen::Vector3d ha = 2.0 * a;
+    const double h3 = 1.0 / (h * h * h), h4 = h3 / h, h5 = h4 / h;
+    const double c = 0.5 * EI;
+    addVec(sx, EA * (1.0 - 1.0 / g) * a + c * (fa * h3 - 3.0 * f * h4 * ha), w, Q);
+    addVec(sxx, c * fb * h3, w, Q);
+    if (!K) continue;
+    const Eigen::Matrix3d faa = 2.0 * bb * I3 - 2.0 * b * b.transpose();
+    const Eigen::Matrix3d fbb = 2.0 * h * I3 - 2.0 * a * a.transpose();
+    const Eigen::Matrix3d fab = 4.0 * a * b.transpose() - 2.0 * b * a.transpose() - 2.0 * ab * I3;
+    Paa += c * (faa * h3 - 3.0 * h4 * (fa * ha.transpose() + ha * fa.transpose()) +
+                12.0 * f * h5 * ha * ha.transpose() - 6.0 * f * h4 * I3);
+    const Eigen::Matrix3d Pab = c * (fab * h3 - 3.0 * h4 * ha * fb.transpose());
+    const Eigen::Matrix3d Pbb = c * fbb * h3;
+    for (int i = 0; i < 4; ++i)
+      for (int j = i; j < 4; ++j)
+        K->block<3, 3>(3 * i, 3 * j) +=
+            w * ((sx(i) * sx(j)) * Paa + (sx(i) * sxx(j)) * Pab +
+                 (sxx(i) * sx(j)) * Pab.transpose() + (sxx(i) * sxx(j)) * Pbb);
+  }
+  if (K && EI != 0.0) {
+    for (int i = 1; i < 4; ++i)
+      for (int j = 0; j < i; ++j) K->block<3, 3>(3 * i, 3 * j) = K->block<3, 3>(3 * j, 3 * i).transpose();
+  }
+}
+
+void ancfAxialDampingForce(const AncfCableProperties& p, double c, const Vector12& e,
+                           const Vector12& edot, Vector12& Q, Matrix12* C) {
+  const GaussRule& gr = gaussRule(p.gauss_points);
+  Q.setZero();
+  if (C) C->setZero();
+  const double cEA = c * p.axial_stiffness, l = p.length;
+  for (int q = 0; q < gr.x.size(); ++q) {
+    const double w = gr.w(q) * l;
+    const Eigen::Vector4d sx = ancfShapeDx(gr.x(q), l);
+    const Eigen::Vector3d t = combine(sx, e).normalized();
+    const double epsDot = t.dot(combine(sx, edot));
+    addVec(sx, cEA * epsDot * t, w, Q);
+    if (C) addOuter(sx, sx, cEA * t * t.transpose(), w, *C);
+  }
+}
+
+}  // namespace crane_twin

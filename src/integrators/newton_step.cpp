@@ -1,0 +1,76 @@
+#include "crane_twin/integrators/newton_step.hpp"
+
+#include <algorithm>
+
+namespace crane_twin {
+
+double correctSupport(const GeneralizedAlpha& ga, const RopeSupport& support, double h,
+                      const Eigen::VectorXd& Azr, const Eigen::Vector3d& dmu, CoupledState& s) {
+  if (support.size() == 0) return 0.0;
+  const Eigen::VectorXd dz = Azr + support.solvePointForce(dmu);
+  ga.correct(h, dz, s.z, s.zd, s.zdd);
+  return support.pointMotion(dz).cwiseAbs().maxCoeff();
+}
+
+void completeStep(const GeneralizedAlpha& ga, const CoupledState& start, double h, int iterations,
+                  CoupledState& s) {
+  s.a = ga.nextA(start.qdd, start.a, s.qdd);
+  if (s.z.size() > 0) s.za = ga.nextA(start.zdd, start.za, s.zdd);
+  s.t += h;
+  s.newton_iterations = iterations;
+}
+
+double constraintError(const RopeSupport& support, const CoupledState& s) {
+  return (s.q.head<3>() - support.point(s.z)).norm();
+}
+
+bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSettings& newton,
+                double h, const RopeIncrement& increment, CoupledState& s, std::string& why) {
+  const int m = support.size();
+  NewtonWeights w;
+  w.mass = ga.massWeight();
+  w.damping = ga.gamma * h;
+  w.stiffness = ga.beta * h * h;
+  const double bh2 = w.stiffness;
+  const CoupledState start = s;
+  ga.predict(h, start.qdd, start.a, s.q, s.v);
+  if (m > 0) ga.predict(h, start.zdd, start.za, s.z, s.zd);
+  w.G = support.setIterationWeights(w.mass, w.damping, bh2);
+  const std::string at = "t = " + std::to_string(s.t + h) + " s";
+  Eigen::VectorXd Azr, dq;
+  Eigen::Vector3d dmu;
+  for (int it = 0; it < newton.max_iterations; ++it) {
+    // Condensed constraint row: r_c + D A_z^-1 r_z.
+    Eigen::Vector3d rc = -(s.q.head<3>() - support.point(s.z));
+    if (m > 0) {
+      Azr = support.solve(-bh2 * (support.internalForce(s.z, s.zd, s.zdd) -
+                                  support.pointForceToCoordinates(s.lambda)));
+      rc += support.pointMotion(Azr);
+    }
+    if (!increment(s, w, rc, dq, dmu, why)) {
+      why = at + ": " + why;
+      s = start;
+      return false;
+    }
+    ga.correct(h, dq, s.q, s.v, s.qdd);
+    s.lambda += dmu / bh2;
+    const double dmax =
+        std::max(dq.cwiseAbs().maxCoeff(), correctSupport(ga, support, h, Azr, dmu, s));
+    if (!s.q.allFinite() || !s.z.allFinite() || !s.lambda.allFinite()) {
+      why = at + ": non-finite state";
+      s = start;
+      return false;
+    }
+    if (dmax < newton.position_tolerance &&
+        constraintError(support, s) < newton.constraint_tolerance) {
+      completeStep(ga, start, h, it + 1, s);
+      return true;
+    }
+  }
+  why = at + ": Newton did not converge in " + std::to_string(newton.max_iterations) +
+        " iterations";
+  s = start;
+  return false;
+}
+
+}  // namespace crane_twin

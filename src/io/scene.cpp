@@ -1,0 +1,186 @@
+#include "crane_twin/io/scene.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <random>
+
+#include "crane_twin/io/config_reader.hpp"
+
+namespace crane_twin {
+
+namespace {
+
+std::string resolveCraneFile(const std::string& scene_path, const std::string& name) {
+  namespace fs = std::filesystem;
+  if (name.size() > 5 && name.substr(name.size() - 5) == ".yaml") {
+    fs::path p(name);
+    if (p.is_relative()) p = fs::path(scene_path).parent_path() / p;
+    return p.string();
+  }
+  return (fs::path(scene_path).parent_path() / ".." / "cranes" / (name + ".yaml")).string();
+}
+
+}  // namespace
+
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  YAML::Node yaml = loadYamlFile(path);
+  for (const auto& o : overrides) applyOverride(yaml, o);
+  ConfigNode root(yaml, path);
+  Scene s;
+  s.file = path;
+
+  s.crane_name = root.string("crane", std::nullopt);
+  if (s.crane_name.empty()) root.fail("crane", "must name a crane file or be 'none'");
+  if (s.crane_name != "none") {
+    const std::string cf = resolveCraneFile(path, s.crane_name);
+    std::error_code ec;  // a name too long for the file system is an error, not an exception
+    if (!std::filesystem::is_regular_file(cf, ec)) {
+      root.fail("crane", "crane file '" + cf + "' does not exist" +
+                             (ec ? " (" + ec.message() + ")" : std::string()));
+    }
+    s.crane = loadCraneDescription(cf);
+  }
+  s.anchor = root.vec3("anchor", Eigen::Vector3d::Zero());
+  if (s.crane && root.has("anchor")) root.fail("anchor", "only allowed with crane: none");
+
+  s.duration = root.number("duration", std::nullopt, Bounds::positive());
+  s.time_step = root.number("time_step", std::nullopt, Bounds::positive());
+  if (s.time_step > s.duration) root.fail("time_step", "must not exceed duration");
+  s.output_interval = root.number("output_interval", 0.01, Bounds::positive());
+  if (s.output_interval < s.time_step * (1.0 - 1e-9)) {
+    root.fail("output_interval", "must be at least time_step");
+  }
+  {
+    ConfigNode n = root.map("integrator");
+    s.integrator = n.string("method", "generalized_alpha", {"generalized_alpha", "newmark"});
+    s.rho_inf = n.number("rho_inf", 0.9, Bounds::closed(0.0, 1.0));
+    n.finish();
+  }
+  {
+    ConfigNode n = root.map("structure");
+    s.structure_model = n.string("model", s.crane ? "modal" : "rigid", {"rigid", "modal", "full"});
+    s.structure_modes = n.integer("modes", 100, 1, 100000);
+    s.structure_damping_ratio = n.number("damping_ratio", 0.01, Bounds::closed(0.0, 1.0));
+    n.finish();
+    if (!s.crane && s.structure_model != "rigid") {
+      root.fail("structure.model", "must be rigid with crane: none");
+    }
+  }
+  {
+    ConfigNode n = root.map("rope", true);
+    RopeSettings& r = s.rope;
+    const RopeSpec def = s.crane ? s.crane->rope : RopeSpec{};
+    r.model = n.string("model", "reduced", {"pendulum", "full", "reduced"});
+    r.elements = n.integer("elements", 120, 1, 100000);
+    r.length = n.number("length", std::nullopt, Bounds::positive());
+    r.falls = n.integer("falls", def.falls, 1, 12);
+    r.bending = n.boolean("bending", true);
+    r.mode_fraction = n.number("mode_fraction", 0.5, {0.0, 1.0, true, false});
+    r.mode_count = n.integer("mode_count", 0, 0, 1000000);
+    r.subdomain_delta = n.number("subdomain_delta", 0.05, Bounds::positive());
+    r.mode_update = n.string("mode_update", "warm", {"cold", "warm"});
+    r.subdomain_residual = n.number("subdomain_residual", 0.0, Bounds::nonNegative());
+    r.subdomain_frame = n.string("subdomain_frame", "fixed", {"fixed", "corotational"});
+    r.subdomain_rotation = n.number("subdomain_rotation", 0.1, Bounds::closed(1e-4, 1.0));
+    r.damping = n.number("damping", 0.0, Bounds::nonNegative());
+    r.mass_per_length = n.number("mass_per_length", def.mass_per_length, Bounds::positive());
+    r.axial_stiffness = n.number("axial_stiffness", def.axial_stiffness, Bounds::positive());
+    r.bending_stiffness = n.number("bending_stiffness", def.bending_stiffness, Bounds::nonNegative());
+    r.breaking_force = n.number("breaking_force", def.breaking_force, Bounds::positive());
+    n.finish();
+    if (s.crane && (r.length < s.crane->min_rope_length || r.length > s.crane->max_rope_length)) {
+      n.fail("length", "must be within the crane's rope length limits [" +
+                           std::to_string(s.crane->min_rope_length) + ", " +
+                           std::to_string(s.crane->max_rope_length) + "] m");
+    }
+  }
+  {
+    ConfigNode n = root.map("payload");
+    s.payload_mass = n.number("mass", 0.0, Bounds::nonNegative());
+    n.finish();
+  }
+  {
+    ConfigNode n = root.map("trolley");
+    s.trolley_radius = n.number("radius", s.crane ? s.crane->max_radius : 0.0, Bounds::any());
+    n.finish();
+    if (s.crane && (s.trolley_radius < s.crane->min_radius || s.trolley_radius > s.crane->max_radius)) {
+      n.fail("radius", "must be within the crane's radius limits [" +
+                           std::to_string(s.crane->min_radius) + ", " +
+                           std::to_string(s.crane->max_radius) + "] m");
+    }
+  }
+  {
+    ConfigNode n = root.map("slewing");
+    s.slew_angle = n.number("angle", 0.0, Bounds::any());
+    s.slew_inertial_loads = n.boolean("inertial_loads", false);
+    n.finish();
+  }
+  {
+    ConfigNode n = root.map("initial");
+    s.initial_mode = n.string("mode", "equilibrium", {"equilibrium", "stress_free"});
+    s.swing_deg = n.number("swing_deg", 0.0, Bounds::closed(0.0, 180.0));
+    s.swing_azimuth_deg = n.number("swing_azimuth_deg", 0.0, Bounds::any());
+    s.payload_velocity = n.vec3("payload_velocity", Eigen::Vector3d::Zero());
+    n.finish();
+    if (s.initial_mode == "equilibrium" && s.swing_deg >= 90.0) {
+      n.fail("swing_deg", "must be below 90 for an equilibrium start (use mode: stress_free)");
+    }
+  }
+  s.gravity = root.number("gravity", 9.81, Bounds::nonNegative());
+  double last_t = -1.0;
+  for (ConfigNode c : root.mapList("commands")) {
+    CommandEntry e;
+    e.t = c.number("t", std::nullopt, Bounds::nonNegative());
+    if (e.t <= last_t) c.fail("t", "commands must be in increasing time order");
+    last_t = e.t;
+    e.slew_rate = c.number("slew_rate", 0.0, Bounds::any());
+    e.trolley_speed = c.number("trolley_speed", 0.0, Bounds::any());
+    e.hoist_speed = c.number("hoist_speed", 0.0, Bounds::any());
+    c.finish();
+    s.commands.push_back(e);
+  }
+  if (root.has("random_commands")) {
+    ConfigNode n = root.map("random_commands");
+    if (!s.commands.empty()) n.fail("seed", "random_commands and commands exclude each other");
+    if (!s.crane) n.fail("seed", "random commands need a crane (crane: none has no drives)");
+    RandomCommandSpec r;
+    r.seed = n.integer("seed", std::nullopt, 0, std::numeric_limits<int>::max());
+    r.interval = n.number("interval", std::nullopt, Bounds::positive());
+    r.fraction = n.number("fraction", 1.0, {0.0, 1.0, false, true});
+    r.slew = n.boolean("slew", true);
+    r.trolley = n.boolean("trolley", true);
+    r.hoist = n.boolean("hoist", false);
+    n.finish();
+    s.commands = randomCommandSchedule(*s.crane, r, s.duration);
+  }
+  root.finish();
+  return s;
+}
+
+// Entries at t = k interval (k = 0, 1, ... while t < duration), each rate uniform in
+// [-fraction v_max, fraction v_max] of its drive (0 for a drive left out). The generator is
+// std::mt19937 with the uniform variate built here from its raw output, so a seed gives the
+// same schedule with every standard library.
+std::vector<CommandEntry> randomCommandSchedule(const CraneDescription& crane,
+                                                const RandomCommandSpec& spec, double duration) {
+  std::mt19937 gen(static_cast<std::mt19937::result_type>(spec.seed));
+  auto uniform = [&gen](double limit) {
+    const double u = static_cast<double>(gen()) / 4294967296.0;  // [0, 1)
+    return limit * (2.0 * u - 1.0);
+  };
+  std::vector<CommandEntry> out;
+  for (long k = 0;; ++k) {
+    CommandEntry e;
+    e.t = static_cast<double>(k) * spec.interval;
+    if (e.t >= duration) break;
+    const double f = spec.fraction;
+    e.slew_rate = spec.slew ? uniform(f * crane.slewing.max_speed) : 0.0;
+    e.trolley_speed = spec.trolley ? uniform(f * crane.trolley.max_speed) : 0.0;
+    e.hoist_speed = spec.hoist ? uniform(f * crane.hoist.max_speed) : 0.0;
+    out.push_back(e);
+  }
+  return out;
+}
+
+}  // namespace crane_twin

@@ -1,0 +1,108 @@
+#include "crane_twin/rope/ancf_rope.hpp"
+
+#include <stdexcept>
+
+namespace crane_twin {
+
+AncfRope::AncfRope(int elements, double length, double mass_per_length, double axial_stiffness,
+                   double bending_stiffness, double end_mass, const Eigen::Vector3d& gravity,
+                   double top_mass)
+    : elements_(elements), end_mass_(end_mass), top_mass_(top_mass), gravity_(gravity) {
+  if (elements < 1) throw std::invalid_argument("rope needs at least one element");
+  if (!(length > 0.0)) throw std::invalid_argument("rope length must be positive");
+  element_.length = length / elements;
+  element_.mass_per_length = mass_per_length;
+  element_.axial_stiffness = axial_stiffness;
+  element_.bending_stiffness = bending_stiffness;
+  assembleMass();
+}
+
+void AncfRope::setLength(double length) {
+  if (!(length > 0.0)) throw std::invalid_argument("rope length must be positive");
+  element_.length = length / elements_;
+  assembleMass();
+}
+
+void AncfRope::rescaleSlopes(Eigen::VectorXd& x, double from, double to) {
+  const double f = from / to;
+  for (int j = 0; 6 * j < x.size(); ++j) x.segment<3>(6 * j + 3) *= f;
+}
+
+void AncfRope::assembleMass() {
+  const Matrix12 Me = ancfMassMatrix(element_);
+  SparseAssembler A(dofs());
+  std::vector<int> eq(12);
+  for (int k = 0; k < elements_; ++k) {
+    for (int i = 0; i < 12; ++i) eq[i] = 6 * k + i;
+    A.add(Me, eq);
+  }
+  for (int d = 0; d < 3; ++d) {
+    A.addEntry(6 * elements_ + d, 6 * elements_ + d, end_mass_);
+    if (top_mass_ != 0.0) A.addEntry(d, d, top_mass_);
+  }
+  M_ = A.build();
+  // F_g = M * (rigid translation field g): exact consistent gravity, incl. the end mass.
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(dofs());
+  for (int j = 0; j < nodes(); ++j) g.segment<3>(6 * j) = gravity_;
+  Fg_ = M_ * g;
+}
+
+void AncfRope::elasticForce(const Eigen::VectorXd& q, Eigen::VectorXd& Q,
+                            std::vector<Eigen::Triplet<double>>* tangent) const {
+  Q.setZero(dofs());
+  Vector12 Qe;
+  Matrix12 Ke;
+  for (int k = 0; k < elements_; ++k) {
+    const Vector12 e = q.segment<12>(6 * k);
+    ancfElasticForce(element_, e, Qe, tangent ? &Ke : nullptr);
+    Q.segment<12>(6 * k) += Qe;
+    if (tangent) {
+      const int o = 6 * k;
+      for (int j = 0; j < 12; ++j)
+        for (int i = 0; i < 12; ++i) tangent->emplace_back(o + i, o + j, Ke(i, j));
+    }
+  }
+}
+
+SparseMatrix AncfRope::tangentStiffness(const Eigen::VectorXd& q, Eigen::VectorXd* force) const {
+  Eigen::VectorXd Q;
+  std::vector<Eigen::Triplet<double>> t;
+  elasticForce(q, Q, &t);
+  SparseMatrix K(dofs(), dofs());
+  K.setFromTriplets(t.begin(), t.end());
+  if (force) *force = std::move(Q);
+  return K;
+}
+
+double AncfRope::elasticEnergy(const Eigen::VectorXd& q) const {
+  double U = 0.0;
+  for (int k = 0; k < elements_; ++k) U += ancfElasticEnergy(element_, q.segment<12>(6 * k));
+  return U;
+}
+
+Eigen::VectorXd AncfRope::straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d) const {
+  Eigen::VectorXd q(dofs());
+  for (int j = 0; j < nodes(); ++j) {
+    q.segment<3>(6 * j) = top + element_.length * j * d;
+    q.segment<3>(6 * j + 3) = d;
+  }
+  return q;
+}
+
+// r(xi) = S(xi) e per element (SPEC 1.1), xi = k / per_element.
+std::vector<Eigen::Vector3d> sampleRopeCurve(const Eigen::VectorXd& q, double l,
+                                             int per_element) {
+  if (per_element < 1) throw std::invalid_argument("rope samples per element must be >= 1");
+  const int elements = static_cast<int>(q.size()) / 6 - 1;
+  std::vector<Eigen::Vector3d> points;
+  points.reserve(static_cast<size_t>(elements * per_element + 1));
+  for (int k = 0; k < elements; ++k) {
+    const Vector12 e = q.segment<12>(6 * k);
+    for (int i = 0; i < per_element; ++i)
+      points.push_back(ancfPosition(e, static_cast<double>(i) / per_element, l));
+  }
+  points.push_back(q.segment<3>(6 * elements));
+  return points;
+}
+
+}  // namespace crane_twin

@@ -1,0 +1,95 @@
+#include "crane_twin/rope/pendulum_rope.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace crane_twin {
+
+PendulumRope::PendulumRope(double length, double mass_per_length, double axial_stiffness,
+                           double end_mass, const Eigen::Vector3d& gravity, double top_mass)
+    : L_(length), mu_(mass_per_length), EA_(axial_stiffness), end_mass_(end_mass),
+      top_mass_(top_mass), g_(gravity) {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("pendulum rope: ") + what);
+  };
+  require(std::isfinite(mu_) && mu_ >= 0.0, "mass per length must be finite and >= 0");
+  require(std::isfinite(EA_) && EA_ > 0.0, "axial stiffness must be finite and > 0");
+  require(std::isfinite(end_mass_) && end_mass_ >= 0.0, "end mass must be finite and >= 0");
+  require(std::isfinite(top_mass_) && top_mass_ >= 0.0, "top mass must be finite and >= 0");
+  require(g_.allFinite(), "gravity must be finite");
+  setLength(length);
+}
+
+void PendulumRope::setLength(double length) {
+  if (!(std::isfinite(length) && length > 0.0)) {
+    throw std::invalid_argument("pendulum rope: length must be finite and > 0");
+  }
+  L_ = length;
+  const double m = mu_ * L_;
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  M_.setZero();
+  M_.topLeftCorner<3, 3>() = (m / 3.0 + top_mass_) * I;
+  M_.bottomRightCorner<3, 3>() = (m / 3.0 + end_mass_) * I;
+  M_.topRightCorner<3, 3>() = M_.bottomLeftCorner<3, 3>() = (m / 6.0) * I;
+  Vector6 gg;
+  gg << g_, g_;
+  Fg_ = M_ * gg;
+}
+
+double PendulumRope::tension(const Vector6& q) const {
+  const double l = (q.tail<3>() - q.head<3>()).norm();
+  return l > L_ ? EA_ * (l - L_) / L_ : 0.0;
+}
+
+void PendulumRope::elasticForce(const Vector6& q, Vector6& Q, Matrix6* K) const {
+  const Eigen::Vector3d d = q.tail<3>() - q.head<3>();
+  const double l = d.norm();
+  Q.setZero();
+  if (K) K->setZero();
+  if (!(l > L_)) return;  // slack (or both ends together): no force, no stiffness
+  const Eigen::Vector3d u = d / l;
+  const double T = EA_ * (l - L_) / L_;
+  Q.head<3>() = -T * u;
+  Q.tail<3>() = T * u;
+  if (!K) return;
+  const Eigen::Matrix3d uu = u * u.transpose();
+  const Eigen::Matrix3d Kb = EA_ / L_ * uu + T / l * (Eigen::Matrix3d::Identity() - uu);
+  K->topLeftCorner<3, 3>() = Kb;
+  K->bottomRightCorner<3, 3>() = Kb;
+  K->topRightCorner<3, 3>() = -Kb;
+  K->bottomLeftCorner<3, 3>() = -Kb;
+}
+
+void PendulumRope::dampingForce(double c, const Vector6& q, const Vector6& v, Vector6& Q,
+                                Matrix6* C) const {
+  const Eigen::Vector3d d = q.tail<3>() - q.head<3>();
+  const double l = d.norm();
+  Q.setZero();
+  if (C) C->setZero();
+  if (c == 0.0 || !(l > L_)) return;
+  const Eigen::Vector3d u = d / l;
+  const double k = c * EA_ / L_;
+  const double Td = k * u.dot(v.tail<3>() - v.head<3>());
+  Q.head<3>() = -Td * u;
+  Q.tail<3>() = Td * u;
+  if (!C) return;
+  const Eigen::Matrix3d Cb = k * u * u.transpose();
+  C->topLeftCorner<3, 3>() = Cb;
+  C->bottomRightCorner<3, 3>() = Cb;
+  C->topRightCorner<3, 3>() = -Cb;
+  C->bottomLeftCorner<3, 3>() = -Cb;
+}
+
+double PendulumRope::elasticEnergy(const Vector6& q) const {
+  const double l = (q.tail<3>() - q.head<3>()).norm();
+  return l > L_ ? 0.5 * EA_ / L_ * (l - L_) * (l - L_) : 0.0;
+}
+
+Vector6 PendulumRope::straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d, double l) {
+  Vector6 q;
+  q << top, top + l * d;
+  return q;
+}
+
+}  // namespace crane_twin

@@ -1,0 +1,107 @@
+#include "crane_twin/simulation/crane_simulation.hpp"
+
+#include <cmath>
+#include <iomanip>
+
+#include "crane_twin/io/input_error.hpp"
+#include "crane_twin/rope/rope_modes.hpp"
+
+namespace crane_twin {
+
+CraneSimulation::CraneSimulation(const CraneModel& m) : SupportedRopeSimulation(m) {
+  // Everything below refers to the own copy model_ (the support keeps references into it).
+  const CraneModel& model = model_;
+  const Scene& sc = model.scene;
+  if (sc.rope.model == "pendulum") {
+    throw InputError(sc.file + ": key 'rope.model': the ANCF rope cannot run a pendulum scene "
+                     "(makeSimulation builds PendulumCraneSimulation for it)");
+  }
+  const double trolleyMass = sc.crane ? sc.crane->trolley_mass : 0.0;
+  rope_ = std::make_unique<AncfRope>(sc.rope.elements, sc.rope.length,
+                                     model.rope.mass_per_length, model.rope.axial_stiffness,
+                                     model.rope.bending_stiffness, model.end_mass,
+                                     Eigen::Vector3d(0.0, 0.0, -sc.gravity), trolleyMass);
+  solver_ = std::make_unique<FullOrderSolver>(*rope_, *support_, GeneralizedAlpha::forScene(sc),
+                                              sc.time_step);
+  solver_->setRopeDamping(sc.rope.damping);
+}
+
+CoupledState CraneSimulation::staticState(Eigen::Vector3d* holding_force) {
+  const Scene& sc = model_.scene;
+  return solver_->solveSwingEquilibrium(sc.swing_deg * M_PI / 180.0,
+                                        sc.swing_azimuth_deg * M_PI / 180.0, holding_force);
+}
+
+void CraneSimulation::resetDrives() {
+  const Scene& sc = model_.scene;
+  resetDrivesAndPose();
+  if (sc.crane && rope_->length() != sc.rope.length) {
+    rope_->setLength(sc.rope.length);
+    solver_->refreshMass();
+  }
+}
+
+// Hoisting by uniform rescaling (docs/model.md): the new reference length is spread over all
+// elements, the geometry and nodal velocities are kept (slope coordinates rescaled), M and F_g
+// rebuilt so the rope's mass is mu L exactly.
+void CraneSimulation::applyRopeLength(CoupledState& s) {
+  if (!model_.scene.crane) return;
+  const double from = rope_->length(), to = drives_.hoistLength();
+  if (to == from) return;
+  rope_->setLength(to);
+  solver_->refreshMass();
+  for (Eigen::VectorXd* x : {&s.q, &s.v, &s.qdd, &s.a}) AncfRope::rescaleSlopes(*x, from, to);
+}
+
+CoupledState CraneSimulation::initialState() {
+  resetDrives();
+  return sceneInitialState();
+}
+
+void CraneSimulation::initialize() { state_ = initialState(); }
+
+void CraneSimulation::step() {
+  advanceDrives(state_.t, solver_->timeStep());
+  stepAfterDrives();
+}
+
+void CraneSimulation::stepAfterDrives() {
+  applyRopeLength(state_);
+  solver_->step(state_);
+}
+
+Eigen::VectorXd CraneSimulation::straightRope(const Eigen::Vector3d& top,
+                                              const Eigen::Vector3d& dir) const {
+  return rope_->straight(top, dir);
+}
+
+void CraneSimulation::initializeAccelerations(CoupledState& s) {
+  solver_->initializeAccelerations(s);
+}
+
+int CraneSimulation::endPointIndex() const { return rope_->dofs() - 6; }
+
+double CraneSimulation::topTensionOf(const CoupledState& s) const {
+  return ropeTopTension(*rope_, s);
+}
+
+double CraneSimulation::energyOf(const CoupledState& s) const {
+  return mechanicalEnergy(*rope_, *support_, s);
+}
+
+std::vector<Eigen::Vector3d> CraneSimulation::ropeCurve(int per_element) const {
+  return sampleRopeCurve(state_.q, rope_->element().length, per_element);
+}
+
+ModalBasis CraneSimulation::ropeModes(int count) {
+  const CoupledState eq = solver_->solveSwingEquilibrium(0.0, 0.0);
+  // The top node's three position DOFs are held by the constraint.
+  const SparseMatrix K = withoutTopPosition(rope_->tangentStiffness(eq.q));
+  const SparseMatrix M = withoutTopPosition(rope_->massMatrix());
+  ModalOptions opt;
+  opt.count = count;
+  opt.shift = -1e-3;
+  return lowestModes(K, M, opt);
+}
+
+}  // namespace crane_twin

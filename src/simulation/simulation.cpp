@@ -1,0 +1,59 @@
+#include "crane_twin/simulation/simulation.hpp"
+
+#include <iomanip>
+
+#include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/simulation/pendulum_crane_simulation.hpp"
+#include "crane_twin/simulation/reduced_crane_simulation.hpp"
+
+namespace crane_twin {
+
+const char* const kSeriesHeader =
+    "t,payload_x,payload_y,payload_z,payload_vx,payload_vy,payload_vz,cab_dx,cab_dy,cab_dz,"
+    "jib_tip_dx,jib_tip_dy,jib_tip_dz,trolley_x,trolley_y,trolley_z,rope_top_tension,"
+    "rope_length,slew_angle,trolley_radius,energy,constraint_error,subdomains,"
+    "tension_ratio,load_chart_ratio,warnings";
+
+const char* warningName(int bit) {
+  switch (bit) {
+    case kTensionOverBreakingForce: return "rope tension over its breaking force";
+    case kOutsideLoadChart: return "load outside the load chart at this radius";
+    case kRopeLengthAtLimit: return "rope length at its limit";
+    case kTrolleyAtLimit: return "trolley at its radius limit";
+    case kCommandLimited: return "command above a drive's speed limit, limited";
+    default: return "unknown warning";
+  }
+}
+
+void writeSeriesRow(std::ostream& out, const SeriesValues& v) {
+  auto put = [&out](const Eigen::Vector3d& x) { out << ',' << x.x() << ',' << x.y() << ',' << x.z(); };
+  out << std::setprecision(10) << v.t;
+  put(v.payload);
+  put(v.payload_velocity);
+  put(v.cab);
+  put(v.jib_tip);
+  put(v.trolley);
+  out << ',' << v.rope_top_tension << ',' << v.rope_length << ',' << v.slew_angle << ','
+      << v.trolley_radius << ',' << v.energy << ',' << v.constraint_error << ',' << v.subdomains
+      << ',' << v.tension_ratio << ',' << v.load_chart_ratio << ',' << v.warnings << '\n';
+}
+
+void Simulation::writeNodeRows(std::ostream& out) const {
+  const double t = time();
+  for (int j = 0; j < ropeNodes(); ++j) {
+    const Eigen::Vector3d r = ropeNode(j);
+    out << std::setprecision(10) << t << ',' << j << ',' << r.x() << ',' << r.y() << ',' << r.z()
+        << '\n';
+  }
+}
+
+std::unique_ptr<Simulation> makeSimulation(const CraneModel& model) {
+  const Scene& sc = model.scene;
+  if (sc.rope.model == "full") return std::make_unique<CraneSimulation>(model);
+  if (sc.rope.model == "reduced") return std::make_unique<ReducedCraneSimulation>(model);
+  if (sc.rope.model == "pendulum") return std::make_unique<PendulumCraneSimulation>(model);
+  throw InputError(sc.file + ": key 'rope.model': '" + sc.rope.model + "' is not built yet");
+}
+
+}  // namespace crane_twin

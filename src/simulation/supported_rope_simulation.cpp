@@ -1,0 +1,111 @@
+#include "crane_twin/simulation/supported_rope_simulation.hpp"
+
+#include <cmath>
+
+#include "crane_twin/integrators/newton_step.hpp"
+#include "crane_twin/io/input_error.hpp"
+#include "crane_twin/rope/swing_direction.hpp"
+#include "crane_twin/structure/modal_analysis.hpp"
+#include "crane_twin/structure/structure_support.hpp"
+
+namespace crane_twin {
+
+std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
+  const Scene& sc = model.scene;
+  if (sc.slew_inertial_loads && (!model.structure || sc.structure_model == "rigid")) {
+    throw InputError(sc.file + ": key 'slewing.inertial_loads': the inertial loads of slewing act "
+                     "on a flexible structure (structure.model: modal or full); this scene has " +
+                     (model.structure ? std::string("a rigid one") : std::string("none (crane: none)")));
+  }
+  if (!model.structure) return std::make_unique<FixedAnchor>(sc.anchor);
+  const TowerCraneStructure& st = *model.structure;
+  const double theta = sc.slew_angle;
+  if (sc.structure_model == "rigid") {
+    return std::make_unique<RigidTrolleySupport>(st, sc.trolley_radius, theta);
+  }
+  if (sc.structure_modes >= st.free_dofs) {
+    throw InputError(sc.file + ": key 'structure.modes': must be below the structure's " +
+                     std::to_string(st.free_dofs) + " DOF, got " +
+                     std::to_string(sc.structure_modes));
+  }
+  ModalOptions opt;
+  opt.count = sc.structure_modes;
+  const ModalBasis b = lowestModes(st.K, st.M, opt);
+  if (sc.structure_model == "modal") {
+    auto modal = std::make_unique<ModalStructureSupport>(st, b, sc.structure_damping_ratio,
+                                                         sc.trolley_radius, theta);
+    if (sc.slew_inertial_loads) modal->enableSlewingLoads();
+    return modal;
+  }
+  // full: Rayleigh damping matched at the first and the structure.modes-th frequency (a single
+  // mode gives no second frequency: match at 10 w1 then).
+  const double w1 = std::sqrt(b.omega2(0));
+  const double wk = b.omega2.size() > 1 ? std::sqrt(b.omega2(b.omega2.size() - 1)) : 10.0 * w1;
+  auto full = std::make_unique<FullStructureSupport>(st, sc.structure_damping_ratio, w1,
+                                                     wk > w1 ? wk : 10.0 * w1, sc.trolley_radius,
+                                                     theta);
+  if (sc.slew_inertial_loads) full->enableSlewingLoads();
+  return full;
+}
+
+SupportedRopeSimulation::SupportedRopeSimulation(const CraneModel& model)
+    : model_(model), drives_(model_.scene), support_(makeRopeSupport(model_)) {}
+
+void SupportedRopeSimulation::resetDrivesAndPose() {
+  const Scene& sc = model_.scene;
+  drives_.reset();
+  support_->setPose(sc.slew_angle, sc.trolley_radius);
+  support_->setSlewMotion(0.0, 0.0);
+}
+
+bool SupportedRopeSimulation::advanceDrives(double t, double dt) {
+  if (!drives_.advance(t, dt)) return false;
+  support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
+  support_->setSlewMotion(drives_.slewRate(), drives_.slewAcceleration());
+  return true;
+}
+
+CoupledState SupportedRopeSimulation::sceneInitialState() {
+  const Scene& sc = model_.scene;
+  const double th = sc.swing_deg * M_PI / 180.0, az = sc.swing_azimuth_deg * M_PI / 180.0;
+  CoupledState s;
+  if (sc.initial_mode == "stress_free") {
+    s.z = s.zd = Eigen::VectorXd::Zero(support_->size());
+    s.q = straightRope(support_->point(s.z), swingDirection(th, az));
+    s.v = Eigen::VectorXd::Zero(s.q.size());
+  } else {
+    s = staticState();
+  }
+  s.v.segment<3>(endPointIndex()) += sc.payload_velocity;
+  s.t = 0.0;
+  initializeAccelerations(s);
+  return s;
+}
+
+void SupportedRopeSimulation::sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
+                                     Eigen::Vector3d& jib_tip) const {
+  payload = state_.q.segment<3>(endPointIndex());
+  cab = support_->cabDisplacement(state_.z);
+  jib_tip = support_->jibTipDisplacement(state_.z);
+}
+
+SeriesValues SupportedRopeSimulation::seriesOf(const CoupledState& s) const {
+  const int e = endPointIndex();
+  SeriesValues v;
+  v.t = s.t;
+  v.payload = s.q.segment<3>(e);
+  v.payload_velocity = s.v.segment<3>(e);
+  v.cab = support_->cabDisplacement(s.z);
+  v.jib_tip = support_->jibTipDisplacement(s.z);
+  v.trolley = support_->point(s.z);
+  v.rope_top_tension = topTensionOf(s);
+  v.rope_length = ropeLength();
+  v.slew_angle = drives_.slewAngle();
+  v.trolley_radius = drives_.trolleyRadius();
+  v.energy = energyOf(s);
+  v.constraint_error = constraintError(*support_, s);
+  setCraneWarnings(model_, drives_, v);
+  return v;
+}
+
+}  // namespace crane_twin

@@ -1,0 +1,283 @@
+#include "crane_twin/solvers/full_order_solver.hpp"
+
+#include <Eigen/UmfPackSupport>
+
+#include "crane_twin/integrators/numerical_failure.hpp"
+#include "crane_twin/integrators/step_halving.hpp"
+#include "crane_twin/rope/swing_direction.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace crane_twin {
+
+FullOrderSolver::FullOrderSolver(const AncfRope& rope, RopeSupport& support,
+                                 const GeneralizedAlpha& scheme, double time_step,
+                                 NewtonSettings newton)
+    : rope_(rope), support_(support), ga_(scheme), h_(time_step), newton_(newton) {
+  if (!(time_step > 0.0)) throw std::invalid_argument("time step must be positive");
+  // Pattern: every element block, the mass matrix, the constraint rows/columns and the
+  // 3 x 3 multiplier block (-G; lower triangle suffices for LDL^T but LU reads it all).
+  const int n = rope_.dofs();
+  std::vector<Eigen::Triplet<double>> t;
+  for (int k = 0; k < rope_.elements(); ++k)
+    for (int j = 0; j < 12; ++j)
+      for (int i = 0; i < 12; ++i) t.emplace_back(6 * k + i, 6 * k + j, 0.0);
+  for (int d = 0; d < 3; ++d) {
+    t.emplace_back(n + d, d, 1.0);
+    t.emplace_back(d, n + d, 1.0);
+    for (int e = 0; e < 3; ++e) t.emplace_back(n + d, n + e, 0.0);
+  }
+  A_.resize(n + 3, n + 3);
+  A_.setFromTriplets(t.begin(), t.end());
+  A_.makeCompressed();
+  const SparseMatrix& M = rope_.massMatrix();
+  for (int c = 0; c < M.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(M, c); it; ++it) {
+      mass_index_.push_back(static_cast<int>(&A_.coeffRef(it.row(), it.col()) - A_.valuePtr()));
+      mass_value_.push_back(it.value());
+    }
+  element_index_.reserve(144 * rope_.elements());
+  for (int k = 0; k < rope_.elements(); ++k)
+    for (int j = 0; j < 12; ++j)
+      for (int i = 0; i < 12; ++i)
+        element_index_.push_back(
+            static_cast<int>(&A_.coeffRef(6 * k + i, 6 * k + j) - A_.valuePtr()));
+  ldlt_.analyzePattern(A_);
+}
+
+void FullOrderSolver::refreshMass() {
+  const SparseMatrix& M = rope_.massMatrix();
+  std::size_t i = 0;
+  for (int c = 0; c < M.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(M, c); it; ++it) mass_value_.at(i++) = it.value();
+  if (i != mass_value_.size()) throw std::logic_error("rope mass pattern changed");
+}
+
+// A = [ massWeight M + stiffWeight K(q)   C_q^T ; C_q  -G ],  C_q = [I3 0 ...].
+void FullOrderSolver::setRopeDamping(double c) {
+  if (!std::isfinite(c) || c < 0.0) throw std::invalid_argument("rope damping must be >= 0");
+  rope_damping_ = c;
+}
+
+void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                               double massWeight, double stiffWeight, double dampWeight,
+                               const Eigen::Matrix3d& G, Eigen::VectorXd& Q) {
+  double* val = A_.valuePtr();
+  const int n = rope_.dofs();
+  std::fill(val, val + A_.nonZeros(), 0.0);
+  for (std::size_t i = 0; i < mass_index_.size(); ++i) val[mass_index_[i]] += massWeight * mass_value_[i];
+  Q.setZero(n);
+  Vector12 Qe;
+  Matrix12 Ke;
+  const int* idx = element_index_.data();
+  for (int k = 0; k < rope_.elements(); ++k, idx += 144) {
+    ancfElasticForce(rope_.element(), q.segment<12>(6 * k), Qe, stiffWeight != 0.0 ? &Ke : nullptr);
+    Q.segment<12>(6 * k) += Qe;
+    if (stiffWeight != 0.0) {
+      const double* ke = Ke.data();
+      for (int e = 0; e < 144; ++e) val[idx[e]] += stiffWeight * ke[e];
+    }
+    if (rope_damping_ == 0.0) continue;
+    ancfAxialDampingForce(rope_.element(), rope_damping_, q.segment<12>(6 * k),
+                          v.segment<12>(6 * k), Qe, dampWeight != 0.0 ? &Ke : nullptr);
+    Q.segment<12>(6 * k) += Qe;
+    if (dampWeight == 0.0) continue;
+    const double* ce = Ke.data();
+    for (int e = 0; e < 144; ++e) val[idx[e]] += dampWeight * ce[e];
+  }
+  for (int d = 0; d < 3; ++d) {
+    A_.coeffRef(n + d, d) = 1.0;
+    A_.coeffRef(d, n + d) = 1.0;
+    for (int e = 0; e < 3; ++e) A_.coeffRef(n + d, n + e) = -G(d, e);
+  }
+}
+
+// Block elimination of the support (see the header): the reduced right-hand side is
+// [r_q; r_c + D A_z^-1 r_z]; afterwards dz = A_z^-1 (r_z + D^T dy).
+Eigen::VectorXd FullOrderSolver::condensedRhs(const Eigen::VectorXd& rq, const Eigen::VectorXd& rz,
+                                              const Eigen::Vector3d& rc,
+                                              Eigen::VectorXd& Azinv_rz) const {
+  const int n = rope_.dofs();
+  Eigen::VectorXd rhs(n + 3);
+  rhs.head(n) = rq;
+  rhs.tail<3>() = rc;
+  if (support_.size() > 0) {
+    Azinv_rz = support_.solve(rz);
+    rhs.tail<3>() += support_.pointMotion(Azinv_rz);
+  }
+  return rhs;
+}
+
+void FullOrderSolver::factorize(const std::string& what) {
+  ldlt_.factorize(A_);
+  if (ldlt_.info() != Eigen::Success) throw NumericalFailure(what + ": singular iteration matrix");
+}
+
+CoupledState FullOrderSolver::solveStatic(const Eigen::VectorXd& q_guess,
+                                          const Eigen::VectorXd& z_guess,
+                                          const Eigen::Vector3d& end_force) {
+  const int n = rope_.dofs(), m = support_.size();
+  CoupledState s;
+  s.q = q_guess;
+  s.v = Eigen::VectorXd::Zero(n);
+  s.qdd = Eigen::VectorXd::Zero(n);
+  s.a = Eigen::VectorXd::Zero(n);
+  s.z = z_guess.size() == m ? z_guess : Eigen::VectorXd::Zero(m);
+  s.zd = s.zdd = s.za = Eigen::VectorXd::Zero(m);
+  Eigen::VectorXd Q, F = rope_.gravityForce(), Azr;
+  F.segment<3>(n - 6) += end_force;
+  const Eigen::Matrix3d G = support_.setIterationWeights(0.0, 0.0, 1.0);
+  // Statics use a pivoting LU: without the mass term the rope block can be semi-definite
+  // (bending-only lateral stiffness at low tension), where LDL^T without pivoting stops.
+  Eigen::UmfPackLU<SparseMatrix> lu;
+  for (int it = 0; it < 50; ++it) {
+    assemble(s.q, s.v, 0.0, 1.0, 0.0, G, Q);
+    Eigen::VectorXd rq = -(Q - F);
+    rq.head<3>() -= s.lambda;
+    Eigen::VectorXd rz;
+    if (m > 0) rz = -(support_.internalForce(s.z, s.zd, s.zdd) - support_.pointForceToCoordinates(s.lambda));
+    const Eigen::Vector3d rc = -(s.q.head<3>() - support_.point(s.z));
+    const Eigen::VectorXd rhs = condensedRhs(rq, rz, rc, Azr);
+    lu.compute(A_);
+    if (lu.info() != Eigen::Success) throw NumericalFailure("static solve: singular tangent");
+    const Eigen::VectorXd dx = lu.solve(rhs);
+    // Limit the step to a tenth of the rope length: a poor guess must not overshoot.
+    double scale = 1.0;
+    const double dmax = dx.head(n).cwiseAbs().maxCoeff();
+    if (dmax > 0.1 * rope_.length()) scale = 0.1 * rope_.length() / dmax;
+    s.q += scale * dx.head(n);
+    s.lambda += scale * dx.tail<3>();
+    if (m > 0) s.z += scale * (Azr + support_.solvePointForce(dx.tail<3>()));
+    if (!s.q.allFinite() || !s.z.allFinite()) throw NumericalFailure("static solve: non-finite state");
+    if (scale == 1.0 && dmax < 1e-11 * std::max(1.0, rope_.length())) return s;
+  }
+  throw NumericalFailure("static solve did not converge in 50 Newton iterations");
+}
+
+CoupledState FullOrderSolver::solveSwingEquilibrium(double swing_rad, double az_rad,
+                                                    Eigen::Vector3d* holding_force) {
+  const Eigen::Vector3d horiz(std::cos(az_rad), std::sin(az_rad), 0.0);
+  const double g = rope_.gravity().norm();
+  const double endW = rope_.endMass() * g;
+  const double W = endW + rope_.element().mass_per_length * rope_.length() * g;
+  const Eigen::Vector3d top = support_.point(Eigen::VectorXd::Zero(support_.size()));
+  auto chordAngle = [&](const CoupledState& s) {
+    const Eigen::Vector3d c = s.q.segment<3>(rope_.dofs() - 6) - s.q.head<3>();
+    return std::atan2(c.dot(horiz), -c.z());
+  };
+  // Start from the straight rope stretched by the static tension profile
+  // T(s) = (W_end + mu g (L - s)) / cos(theta): the tension's geometric stiffness makes the
+  // tangent definite (an unstressed straight rope can rotate about the anchor at no cost).
+  const Eigen::Vector3d d = swingDirection(swing_rad, az_rad);
+  Eigen::VectorXd guess(rope_.dofs());
+  {
+    const double l = rope_.element().length, EA = rope_.element().axial_stiffness;
+    const double perLength = (W - endW) / rope_.length();
+    Eigen::Vector3d r = top;
+    for (int j = 0; j < rope_.nodes(); ++j) {
+      const double T = (endW + perLength * (rope_.length() - j * l)) / std::cos(swing_rad);
+      guess.segment<3>(6 * j) = r;
+      guess.segment<3>(6 * j + 3) = (1.0 + T / EA) * d;
+      const double Tmid = (endW + perLength * (rope_.length() - (j + 0.5) * l)) / std::cos(swing_rad);
+      r += (1.0 + Tmid / EA) * l * d;
+    }
+  }
+  // Closed-form start: a massless rope's chord angle obeys tan(theta) = H / W_end; the rope's
+  // own weight adds half its weight.
+  double H0 = std::tan(swing_rad) * (endW + 0.5 * (W - endW));
+  CoupledState s0 = solveStatic(guess, Eigen::VectorXd(), H0 * horiz);
+  if (swing_rad == 0.0) {
+    if (holding_force) holding_force->setZero();
+    return s0;
+  }
+  double H1 = H0 * 1.02;
+  CoupledState s1 = solveStatic(s0.q, s0.z, H1 * horiz);
+  double e0 = chordAngle(s0) - swing_rad, e1 = chordAngle(s1) - swing_rad;
+  for (int it = 0; it < 30 && std::abs(e1) > 1e-12; ++it) {
+    const double H2 = H1 - e1 * (H1 - H0) / (e1 - e0);
+    H0 = H1;
+    e0 = e1;
+    H1 = H2;
+    s1 = solveStatic(s1.q, s1.z, H1 * horiz);
+    e1 = chordAngle(s1) - swing_rad;
+  }
+  if (std::abs(e1) > 1e-9) throw NumericalFailure("swing equilibrium: chord angle not reached");
+  if (holding_force) *holding_force = H1 * horiz;
+  return s1;
+}
+
+void FullOrderSolver::initializeAccelerations(CoupledState& s) {
+  const int n = rope_.dofs(), m = support_.size();
+  if (s.z.size() != m) s.z = Eigen::VectorXd::Zero(m);
+  if (s.zd.size() != m) s.zd = Eigen::VectorXd::Zero(m);
+  s.zdd = Eigen::VectorXd::Zero(m);
+  Eigen::VectorXd Q, Azr, rz;
+  const Eigen::Matrix3d G = support_.setIterationWeights(1.0, 0.0, 0.0);
+  assemble(s.q, s.v, 1.0, 0.0, 0.0, G, Q);
+  if (m > 0) rz = -support_.internalForce(s.z, s.zd, s.zdd);
+  const Eigen::VectorXd rhs =
+      condensedRhs(rope_.gravityForce() - Q, rz, Eigen::Vector3d::Zero(), Azr);
+  factorize("initial accelerations");
+  const Eigen::VectorXd x = ldlt_.solve(rhs);
+  s.qdd = x.head(n);
+  s.a = s.qdd;
+  s.lambda = x.tail<3>();
+  if (m > 0) s.zdd = Azr + support_.solvePointForce(s.lambda);
+  s.za = s.zdd;
+}
+
+// One step of size h_, halved where Newton fails (stepWithHalving).
+void FullOrderSolver::step(CoupledState& s) {
+  stepWithHalving(s, h_, kMaxHalvings,
+                  [this](CoupledState& x, double h, std::string& why) { return tryStep(x, h, why); },
+                  halved_steps_);
+}
+
+bool FullOrderSolver::tryStep(CoupledState& s, double h, std::string& why) {
+  const int n = rope_.dofs();
+  const SparseMatrix& M = rope_.massMatrix();
+  Eigen::VectorXd Q;
+  const RopeIncrement increment = [&](const CoupledState& x, const NewtonWeights& w,
+                                      const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
+                                      Eigen::Vector3d& dmu, std::string& reason) {
+    // d/dq of the damping force through v' = gamma / (beta h) dq, times beta h^2.
+    assemble(x.q, x.v, w.mass, w.stiffness, w.damping, w.G, Q);
+    Eigen::VectorXd rhs(n + 3);
+    rhs.head(n) = -w.stiffness * (M * x.qdd + Q - rope_.gravityForce());
+    rhs.head<3>() -= w.stiffness * x.lambda;
+    rhs.tail<3>() = rc;
+    ldlt_.factorize(A_);
+    if (ldlt_.info() != Eigen::Success) {
+      reason = "singular iteration matrix";
+      return false;
+    }
+    const Eigen::VectorXd dx = ldlt_.solve(rhs);
+    dq = dx.head(n);
+    dmu = dx.tail<3>();
+    return true;
+  };
+  return newtonStep(ga_, support_, newton_, h, increment, s, why);
+}
+
+double mechanicalEnergy(const AncfRope& rope, const RopeSupport& support, const CoupledState& s) {
+  return 0.5 * s.v.dot(rope.massMatrix() * s.v) + rope.elasticEnergy(s.q) -
+         rope.gravityForce().dot(s.q) + support.energy(s.z, s.zd);
+}
+
+double ropeTopTension(const AncfRope& rope, const CoupledState& s) {
+  return (s.lambda + rope.topMass() * (s.qdd.head<3>() - rope.gravity())).norm();
+}
+
+double FullOrderSolver::energy(const CoupledState& s) const {
+  return mechanicalEnergy(rope_, support_, s);
+}
+
+double FullOrderSolver::topTension(const CoupledState& s) const { return ropeTopTension(rope_, s); }
+
+double FullOrderSolver::constraintError(const CoupledState& s) const {
+  return crane_twin::constraintError(support_, s);
+}
+
+}  // namespace crane_twin

@@ -1,0 +1,196 @@
+#include "crane_twin/structure/structure_support.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace crane_twin {
+
+namespace {
+
+// 3 x N rows with row_d . u = sum_i w_i u_{node_i, d} (translations of the weighted nodes).
+Eigen::Matrix<double, 3, Eigen::Dynamic> pointRows(const TowerCraneStructure& s,
+                                                    const std::vector<NodeLoad>& at) {
+  Eigen::Matrix<double, 3, Eigen::Dynamic> P = Eigen::MatrixXd::Zero(3, s.free_dofs);
+  for (const auto& w : at)
+    for (int d = 0; d < 3; ++d) {
+      const int e = s.dof_equation[6 * w.node + d];
+      if (e >= 0) P(d, e) += w.weight;
+    }
+  return P;
+}
+
+}  // namespace
+
+Eigen::Matrix3d slewRotation(double theta) {
+  return Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+}
+
+// Trolley point X_p(s): the rail interpolation weights at radius s.
+Eigen::Vector3d trolleyPoint(const TowerCraneStructure& s, double radius) {
+  Eigen::Vector3d X = Eigen::Vector3d::Zero();
+  for (const auto& w : s.trolleyWeights(radius)) X += w.weight * s.nodes[w.node];
+  return X;
+}
+
+StructureSupportBase::StructureSupportBase(const TowerCraneStructure& s, double trolley_radius,
+                                           double slew_angle, const Eigen::MatrixXd* modes)
+    : structure_(s) {
+  if (modes) modes_ = *modes;
+  std::vector<NodeLoad> tip;
+  for (int n : s.jib_tip_nodes) tip.push_back({n, 1.0 / s.jib_tip_nodes.size()});
+  const auto Pc = pointRows(s, {{s.cab_node, 1.0}}), Pj = pointRows(s, tip);
+  cab_ = modes ? Eigen::Matrix<double, 3, Eigen::Dynamic>(Pc * *modes) : Pc;
+  tip_ = modes ? Eigen::Matrix<double, 3, Eigen::Dynamic>(Pj * *modes) : Pj;
+  setPose(slew_angle, trolley_radius);
+}
+
+// r_p = R(theta) (X_p(s) + B(s) T z): D = R B T.
+void StructureSupportBase::setPose(double theta, double radius) {
+  const std::vector<NodeLoad> w = structure_.trolleyWeights(radius);
+  const Eigen::Matrix3d R = slewRotation(theta);
+  r0_ = R * trolleyPoint(structure_, radius);
+  if (modes_.size() > 0) {
+    Eigen::Matrix<double, 3, Eigen::Dynamic> BT = Eigen::MatrixXd::Zero(3, modes_.cols());
+    for (const auto& x : w)
+      for (int d = 0; d < 3; ++d) {
+        const int e = structure_.dof_equation[6 * x.node + d];
+        if (e >= 0) BT.row(d) += x.weight * modes_.row(e);
+      }
+    D_ = R * BT;
+  } else {
+    D_ = R * pointRows(structure_, w);
+  }
+  ++pose_version_;
+}
+
+void slewingFields(const TowerCraneStructure& s, Eigen::VectorXd& r_theta, Eigen::VectorXd& c) {
+  std::vector<bool> turns(s.nodes.size(), false);
+  for (const StructureMember& m : s.members) {
+    if (m.group == "mast") continue;
+    turns[m.node1] = turns[m.node2] = true;
+  }
+  r_theta = Eigen::VectorXd::Zero(s.free_dofs);
+  c = Eigen::VectorXd::Zero(s.free_dofs);
+  for (std::size_t n = 0; n < s.nodes.size(); ++n) {
+    if (!turns[n]) continue;
+    const Eigen::Vector3d& X = s.nodes[n];
+    const double rt[6] = {-X.y(), X.x(), 0.0, 0.0, 0.0, 1.0};
+    const double cf[6] = {-X.x(), -X.y(), 0.0, 0.0, 0.0, 0.0};
+    for (int d = 0; d < 6; ++d) {
+      const int e = s.dof_equation[6 * n + d];
+      if (e < 0) continue;
+      r_theta(e) = rt[d];
+      c(e) = cf[d];
+    }
+  }
+}
+
+void StructureSupportBase::enableSlewingLoads() {
+  Eigen::VectorXd r, c;
+  slewingFields(structure_, r, c);
+  const Eigen::VectorXd Mr = structure_.M * r, Mc = structure_.M * c;
+  euler_ = modes_.size() > 0 ? Eigen::VectorXd(modes_.transpose() * Mr) : Mr;
+  centrifugal_ = modes_.size() > 0 ? Eigen::VectorXd(modes_.transpose() * Mc) : Mc;
+}
+
+void StructureSupportBase::setSlewMotion(double rate, double acceleration) {
+  slew_rate_ = rate;
+  slew_acceleration_ = acceleration;
+}
+
+// T^T f = -(theta'' T^T M r_theta + theta'^2 T^T M c).
+Eigen::VectorXd StructureSupportBase::slewingLoad() const {
+  if (euler_.size() == 0) return Eigen::VectorXd::Zero(size());
+  return -(slew_acceleration_ * euler_ + slew_rate_ * slew_rate_ * centrifugal_);
+}
+
+RigidTrolleySupport::RigidTrolleySupport(const TowerCraneStructure& s, double trolley_radius,
+                                         double slew_angle)
+    : FixedAnchor(Eigen::Vector3d::Zero()), structure_(s) {
+  setPose(slew_angle, trolley_radius);
+}
+
+void RigidTrolleySupport::setPose(double theta, double radius) {
+  p_ = slewRotation(theta) * trolleyPoint(structure_, radius);
+}
+
+Eigen::VectorXd RigidTrolleySupport::structureDisplacement(const Eigen::VectorXd&) const {
+  return Eigen::VectorXd::Zero(structure_.free_dofs);
+}
+
+ModalStructureSupport::ModalStructureSupport(const TowerCraneStructure& s, const ModalBasis& b,
+                                             double zeta, double trolley_radius,
+                                             double slew_angle)
+    : StructureSupportBase(s, trolley_radius, slew_angle, &b.phi),
+      omega2_(b.omega2),
+      damping_(2.0 * zeta * b.omega2.cwiseSqrt()),
+      diagonal_(Eigen::VectorXd::Ones(b.omega2.size())) {
+  if (!(zeta >= 0.0)) throw std::invalid_argument("modal damping ratio must be >= 0");
+}
+
+// z'' + 2 zeta Omega z' + Omega^2 z (mass-normalised modes).
+Eigen::VectorXd ModalStructureSupport::internalForce(const Eigen::VectorXd& z,
+                                                     const Eigen::VectorXd& zd,
+                                                     const Eigen::VectorXd& zdd) const {
+  Eigen::VectorXd f = zdd + damping_.cwiseProduct(zd) + omega2_.cwiseProduct(z);
+  if (slewingLoads()) f -= slewingLoad();
+  return f;
+}
+
+Eigen::Matrix3d ModalStructureSupport::setIterationWeights(double a, double c, double k) {
+  diagonal_ = Eigen::VectorXd::Constant(omega2_.size(), a) + c * damping_ + k * omega2_;
+  return D_ * diagonal_.cwiseInverse().asDiagonal() * D_.transpose();
+}
+
+double ModalStructureSupport::energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const {
+  return 0.5 * zd.squaredNorm() + 0.5 * z.dot(omega2_.cwiseProduct(z));
+}
+
+FullStructureSupport::FullStructureSupport(const TowerCraneStructure& s, double zeta,
+                                           double omega_low, double omega_high,
+                                           double trolley_radius, double slew_angle)
+    : StructureSupportBase(s, trolley_radius, slew_angle, nullptr), M_(s.M), K_(s.K) {
+  if (!(zeta >= 0.0) || !(omega_low > 0.0) || !(omega_high > omega_low)) {
+    throw std::invalid_argument("Rayleigh damping needs zeta >= 0 and 0 < omega_low < omega_high");
+  }
+  // zeta(w) = alpha / (2 w) + beta w / 2, equal to zeta at both frequencies.
+  alpha_ = 2.0 * zeta * omega_low * omega_high / (omega_low + omega_high);
+  beta_ = 2.0 * zeta / (omega_low + omega_high);
+  A_ = M_ + K_;  // union pattern; values rewritten per weight set
+  llt_.analyzePattern(A_);
+}
+
+Eigen::VectorXd FullStructureSupport::internalForce(const Eigen::VectorXd& z,
+                                                    const Eigen::VectorXd& zd,
+                                                    const Eigen::VectorXd& zdd) const {
+  Eigen::VectorXd f = M_ * (zdd + alpha_ * zd) + K_ * (z + beta_ * zd);
+  if (slewingLoads()) f -= slewingLoad();
+  return f;
+}
+
+Eigen::Matrix3d FullStructureSupport::setIterationWeights(double a, double c, double k) {
+  // A_z = a M + c (alpha M + beta K) + k K.
+  const double wm = a + c * alpha_, wk = k + c * beta_;
+  const bool weightsChanged = !(wm == weight_m_ && wk == weight_k_);
+  if (!weightsChanged && G_pose_version_ == pose_version_) return G_;
+  if (weightsChanged) {
+    A_ = wm * M_ + wk * K_;
+    llt_.factorize(A_);
+    if (llt_.info() != Eigen::Success) {
+      throw std::runtime_error("structure iteration matrix factorisation failed");
+    }
+    weight_m_ = wm;
+    weight_k_ = wk;
+  }
+  X_ = llt_.solve(Eigen::MatrixXd(D_.transpose()));
+  G_ = D_ * X_;
+  G_pose_version_ = pose_version_;
+  return G_;
+}
+
+double FullStructureSupport::energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const {
+  return 0.5 * zd.dot(M_ * zd) + 0.5 * z.dot(K_ * z);
+}
+
+}  // namespace crane_twin
