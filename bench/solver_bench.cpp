@@ -39,7 +39,7 @@ static void BM_FullOrderStepT8036Modal(benchmark::State& state) {
 BENCHMARK(BM_FullOrderStepT8036Modal)->Arg(60)->Arg(120)->Arg(240)->Arg(480)->ArgName("elements")
     ->Unit(benchmark::kMicrosecond);
 
-// ---- Reduced order (issue 4) ----------------------------------------------------------------
+// ---- Reduced order ----------------------------------------------------------------
 
 namespace {
 struct RopeTangents {

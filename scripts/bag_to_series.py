@@ -3,7 +3,7 @@
 
   bag_to_series.py BAG [--series OUT.csv] [--commands OUT.yaml] [--stats]
 
---series    crane/state as a SPEC 3.1 time-series CSV (crane_sim compare and plot_series.py
+--series    crane/state as a docs/cli.md time-series CSV (crane_sim compare and plot_series.py
             read it);
 --commands  crane/command_applied as a scene `commands:` schedule (YAML flow list, simulated
             times), so `crane_sim run SCENE --set "commands=$(cat OUT.yaml)"` repeats the run;

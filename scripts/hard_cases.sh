@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Run every hard-case scene of SPEC 6 at full length (and the reduced model where it applies)
+# Run every hard-case scene of docs/stability.md at full length (and the reduced model where it applies)
 # and write build/hard_cases/<case>.csv, .log; then scripts/stability_report.py prints the
 # table of docs/stability.md. About 10 minutes on the 2-core machine. Needs a build.
 set -uo pipefail

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""A scripted crane operator for crane_sim_node (SPEC 3.2): unpauses the simulator if it
+"""A scripted crane operator for crane_sim_node (docs/ros.md): unpauses the simulator if it
 waits, then sends crane/command at 10 Hz following a profile in *simulated* time (read from
 crane/state), and finally falls silent so the node's command timeout brings the drives to rest.
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Plot payload x, cab dx and jib-tip dz histories of crane_sim time series (SPEC 3.1 CSV).
+"""Plot payload x, cab dx and jib-tip dz histories of crane_sim time series (docs/cli.md CSV).
 
 Usage: scripts/plot_series.py OUT.png SERIES.csv [SERIES.csv ...]   (one line per file)
 """

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Regenerate docs/data/sweep_<scene>.csv for the four paper scenes (SPEC 5, issue 4) and the
+# Regenerate docs/data/sweep_<scene>.csv for the four paper scenes (docs/accuracy-vs-time.md) and the
 # chart docs/accuracy_vs_time.png. About 10 minutes on the 2-core machine; needs scripts/build.sh.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

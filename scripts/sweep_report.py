@@ -3,7 +3,7 @@
 
 Usage: scripts/sweep_report.py [--headline | --ladder] SWEEP.csv [SWEEP.csv ...]
 --headline prints one table row per scene (docs/accuracy-vs-time.md's headline table).
---ladder prints the fidelity ladder (issue 7): each rung's cost and error, cheapest first, and
+--ladder prints the fidelity ladder: each rung's cost and error, cheapest first, and
 the cheapest rung within 1 mm and within the paper's 0.15 m.
 Per scene: every setting, then the headline ratios: the paper's point (half the rope DOF at the
 scene's step and delta) against full order at the same step; reduced against full at the same

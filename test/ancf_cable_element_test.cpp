@@ -1,4 +1,4 @@
-// Checks of the ANCF cable element against SPEC 1.1: shape functions, mass, and the analytic
+// Checks of the ANCF cable element against docs/model.md: shape functions, mass, and the analytic
 // force and tangent against finite differences of the energy.
 #include <gtest/gtest.h>
 
@@ -221,7 +221,7 @@ TEST(AncfForce, CurvatureOfCircularArc) {
 }
 
 TEST(AncfQuadrature, FivePointsConvergedTo1e10) {
-  // SPEC 1.1: refining the Gauss rule must change nothing to 1e-10 relative at the default,
+  // docs/model.md: refining the Gauss rule must change nothing to 1e-10 relative at the default,
   // for the states a rope element is in (tensioned, bent, curved in 3D).
   AncfCableProperties p = ropeElement();
   EXPECT_EQ(p.gauss_points, 5);
@@ -253,7 +253,7 @@ TEST(AncfQuadrature, ElementWithStrainSignChangeNeedsMorePoints) {
   EXPECT_GT(std::abs(ancfElasticEnergy(p, e) - U10), 1e-8 * U10);
 }
 
-// ---- axial damping (rope.damping, issue 7) -------------------------------------------------
+// ---- axial damping (rope.damping) -------------------------------------------------
 
 TEST(AncfDamping, VelocityJacobianMatchesFiniteDifferences) {
   // Q_d is linear in e', so central differences are exact up to round-off.

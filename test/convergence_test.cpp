@@ -1,4 +1,4 @@
-// Convergence of the full-order model (issue 3): observed order in the time step (generalized-
+// Convergence of the full-order model: observed order in the time step (generalized-
 // alpha is second order, Arnold & Bruls 2007) for the anchored rope and the rope coupled to the
 // T8036 structure, and in the element count for the rope's modes against the Bessel closed
 // form. The observed orders are printed; the assertions are the theory's orders.

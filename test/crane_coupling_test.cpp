@@ -1,4 +1,4 @@
-// The rope coupled to the T8036 structure at full order (SPEC 1.3, 1.5; issue 3): statics
+// The rope coupled to the T8036 structure at full order (docs/model.md): statics
 // against an independent linear structure solve, the trolley mass, modal against full structure
 // coordinates, constraint error at every step, and energy.
 #include <gtest/gtest.h>
@@ -87,7 +87,9 @@ TEST(CraneCoupling, ModalAndFullStructureTrackEachOtherDynamically) {
     maxDiff = std::max(maxDiff, (payload(modal, modal.state()) - payload(full, full.state())).norm());
   }
   std::printf("modal vs full structure: max payload difference %.3g m\n", maxDiff);
-  EXPECT_LT(maxDiff, 0.01);
+  EXPECT_LT(maxDiff, 0.01);  // budget: the 1 cm of the reduced model's target
+  // Sentinel: measured 2.67e-4 m (build/core/crane_coupling_test, "modal vs full structure").
+  EXPECT_LT(maxDiff, 1e-3);
 }
 
 TEST(CraneCoupling, EnergyConservedUndampedAndNeverGrowsWithDamping) {
@@ -118,7 +120,9 @@ TEST(CraneCoupling, EnergyConservedUndampedAndNeverGrowsWithDamping) {
     std::printf("%s: max |E - E0| %.4g J, swing energy %.4g J\n", damped ? "damped" : "undamped",
                 maxDev, Eswing);
     if (!damped) {
-      EXPECT_LT(maxDev, 0.005 * Eswing);
+      EXPECT_LT(maxDev, 0.005 * Eswing);  // budget: 0.5 % of the swing energy
+      // Sentinel: measured 4.78e-5 J of 2745 J (build/core/crane_coupling_test, "undamped").
+      EXPECT_LT(maxDev, 2e-4);
     }
   }
 }

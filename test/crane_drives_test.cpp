@@ -1,8 +1,11 @@
-// Slewing and trolley travel in the full-order model (SPEC 1.4, issue 5): the drives reach the
+// Slewing and trolley travel in the full-order model (docs/model.md): the drives reach the
 // closed form of their limited profiles, the rope follows the moving trolley, a trolley start
 // swings the load as a rigid pendulum predicts, and the node-facing API (set a command, step,
 // read the state) works without ROS.
 #include <gtest/gtest.h>
+
+#include <array>
+#include <map>
 
 #include <cmath>
 #include <cstdio>
@@ -49,19 +52,40 @@ TEST(CraneDrives, SlewingTurnsTheTrolleyPointAndTheFlexibleJib) {
   CraneSimulation sim(t8036({"structure.model=modal", "structure.modes=20",
                              "commands=[{t: 0, slew_rate: 0.05}, {t: " + std::to_string(T) +
                                  ", slew_rate: 0}]"}));
+  // The jib's deflection under the hanging load at rest, before the turn (slewing frame).
+  const CoupledState s0 = sim.staticState();
+  const Eigen::Vector3d tip0 = sim.support().jibTipDisplacement(s0.z);
+  const Eigen::Vector3d sag0 =
+      sim.support().point(s0.z) - sim.support().point(Eigen::VectorXd::Zero(sim.support().size()));
   sim.initialize();
   run(sim, std::ceil((T + 5.0) / 0.01) * 0.01);
   // The schedule switches at the first step at or after T: 0.05 rad/s for ceil(T / dt) steps.
-  EXPECT_NEAR(sim.drives().slewAngle(), 0.05 * 0.01 * std::ceil(T / 0.01 - 1e-9), 1e-9);
+  const double theta = sim.drives().slewAngle();
+  EXPECT_NEAR(theta, 0.05 * 0.01 * std::ceil(T / 0.01 - 1e-9), 1e-9);
   const SeriesValues v = sim.series();
-  // The undeformed trolley point turned by the slewing angle; the deformed one differs by the
-  // structure's (slewing-frame) deflection under the swinging rope's pull.
+  // The undeformed trolley point turned by the slewing angle.
   const Eigen::Vector3d p0 = sim.support().point(Eigen::VectorXd::Zero(sim.support().size()));
-  EXPECT_NEAR(std::atan2(p0.y(), p0.x()), sim.drives().slewAngle(), 1e-12);
+  EXPECT_NEAR(std::atan2(p0.y(), p0.x()), theta, 1e-12);
   EXPECT_NEAR(p0.head<2>().norm(), 80.0, 1e-9);
-  std::printf("after a quarter turn: payload %.2f m from under the trolley, trolley point "
-              "%.3f m off its undeformed place\n", (v.payload - v.trolley).head<2>().norm(),
-              (v.trolley - p0).norm());
+  // The flexible jib turned with it and still carries the load: the deformed trolley point's
+  // sag, seen in the slewing frame, is the static sag of the jib turned by theta (a world-frame
+  // sag would stay along x), and the jib tip's slewing-frame deflection is the static one, up to
+  // the dynamics of the turn. Sideways, the jib is pulled towards the load: the stop left the
+  // load swinging on ahead of the trolley, and the rope's pull bends the jib that way.
+  const Eigen::AngleAxisd toSlewing(-theta, Eigen::Vector3d::UnitZ());
+  const Eigen::Vector3d sag = toSlewing * (v.trolley - p0);
+  const Eigen::Vector3d hang = toSlewing * (v.payload - v.trolley);
+  std::printf("after a quarter turn: load (%.2f, %.2f) m from under the trolley; trolley sag "
+              "(%.4f, %.4f, %.4f) m in the slewing frame, static (%.4f, %.4f, %.4f) m; jib tip "
+              "dz %.4f m, static %.4f m\n", hang.x(), hang.y(), sag.x(), sag.y(), sag.z(),
+              sag0.x(), sag0.y(), sag0.z(), v.jib_tip.z(), tip0.z());
+  EXPECT_LT(sag0.z(), -0.1);
+  EXPECT_NEAR(sag.z(), sag0.z(), 0.1 * std::abs(sag0.z()));
+  EXPECT_NEAR(sag.x(), sag0.x(), 0.1 * std::abs(sag0.z()));
+  EXPECT_NEAR(v.jib_tip.z(), tip0.z(), 0.1 * std::abs(tip0.z()));
+  EXPECT_GT(std::abs(hang.y()), 1.0);
+  EXPECT_GT(sag.y() * hang.y(), 0.0);
+  EXPECT_GT(std::abs(sag.y()), 0.1);
   EXPECT_LT(v.constraint_error, 1e-8);
   EXPECT_TRUE(v.payload.allFinite() && std::isfinite(v.energy));
 }
@@ -227,10 +251,26 @@ TEST(CraneDrives, ReducedTracksFullOnTheDriveScenes) {
     }
     std::printf("%s: reduced vs full payload error %.3g m, %d subdomains\n", scene, err,
                 red.subdomains());
-    EXPECT_LT(err, 0.3) << scene;
-    EXPECT_NEAR(red.drives().trolleyRadius(), full.drives().trolleyRadius(), 1e-12);
-    EXPECT_NEAR(red.drives().slewAngle(), full.drives().slewAngle(), 1e-12);
-    EXPECT_NEAR(red.crane().ropeLength(), full.ropeLength(), 1e-12);
+    EXPECT_LT(err, 0.3) << scene;  // budget
+    // Both models end where the schedule puts the drives: with symmetric acceleration ramps
+    // each drive travels its commanded speed times the command's duration (slew90 at 40 s:
+    // 0.05 rad/s x 31.42 s; the trolley at 40 s: 80 m - 1 m/s x 39 s after its 1 s ramp; the
+    // hoisting scene: 60 - 40 + 30 m; the cycle: 60 - 20 + 20 m, 80 - 30 m, 0.05 x 20.94 rad).
+    // Last: a sentinel 3-4x above the payload error measured (build/core/crane_drives_test
+    // --gtest_filter='*ReducedTracksFull*': 2.23e-4, 6.77e-5, 2.54e-3, 5.58e-3 m).
+    const std::map<std::string, std::array<double, 4>> end = {
+        {"t8036_slew90.yaml", {0.05 * 31.42, 80.0, 60.0, 1e-3}},
+        {"t8036_trolley_80_to_30.yaml", {0.0, 41.0, 60.0, 3e-4}},
+        {"t8036_hoist_60_20_50.yaml", {0.0, 80.0, 50.0, 1e-2}},
+        {"t8036_operator_cycle.yaml", {0.05 * 20.94, 50.0, 60.0, 2e-2}}};
+    const std::array<double, 4> e = end.at(scene);
+    EXPECT_LT(err, e[3]) << scene;
+    for (const Simulation* sim : {static_cast<const Simulation*>(&full),
+                                  static_cast<const Simulation*>(&red)}) {
+      EXPECT_NEAR(sim->drives().slewAngle(), e[0], 1e-6) << scene;
+      EXPECT_NEAR(sim->drives().trolleyRadius(), e[1], 1e-6) << scene;
+      EXPECT_NEAR(sim->series().rope_length, e[2], 1e-6) << scene;
+    }
   }
 }
 

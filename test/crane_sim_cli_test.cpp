@@ -1,4 +1,4 @@
-// crane_sim as a user runs it: output formats of SPEC 3.1 and exit codes.
+// crane_sim as a user runs it: output formats of docs/cli.md and exit codes.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -63,7 +63,7 @@ TEST(CraneSimCli, InfoHonoursOverrides) {
 
 TEST(CraneSimCli, InfoSaysWhatARunIntegrates) {
   // Combination 1: the reduced rope keeps mode_fraction 0.5 of its 726 DOF, i.e. 363
-  // coordinates (360 modes + the 3 rigid translations, SPEC 1.6), and 100 structure modes;
+  // coordinates (360 modes + the 3 rigid translations, docs/model.md), and 100 structure modes;
   // a rigid structure integrates none.
   Result r = run("info " + kScene);
   ASSERT_EQ(r.status, 0) << r.out;

@@ -1,4 +1,4 @@
-// Drives follow rate commands within their limits (SPEC 1.4, issue 5): final positions equal
+// Drives follow rate commands within their limits (docs/model.md): final positions equal
 // the closed form of the limited (trapezoidal) speed profile; position limits are never passed.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Full-order rope against closed form (SPEC 1.5, issue 3): static stretch and tension, the
+// Full-order rope against closed form (docs/model.md): static stretch and tension, the
 // modes of a hanging chain and of a heavy rope with a tip mass (Bessel functions), energy
 // conservation, and the Project Chrono cross-code solution.
 #include <gtest/gtest.h>
@@ -177,7 +177,7 @@ TEST(AnchoredRope, TracksProjectChronoTipOverFirstTwoSeconds) {
     }
   }
   EXPECT_GT(r, 40u);
-  EXPECT_LT(worstX, 0.01);  // SPEC 4: within a centimetre or two
+  EXPECT_LT(worstX, 0.01);  // docs/accuracy-vs-time.md: within a centimetre or two
   EXPECT_LT(worstZ, 0.02);
 }
 

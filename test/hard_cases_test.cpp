@@ -1,4 +1,4 @@
-// The hard cases of SPEC 6 (issue 7), each a shipped scene: run (shortened, coarser where the
+// The hard cases of docs/stability.md, each a shipped scene: run (shortened, coarser where the
 // full scene is long) and checked for a finite state, a bounded constraint error, energy that
 // never grows where nothing feeds it, and the end time reached. docs/stability.md reports the
 // full-length runs (scripts/hard_cases.sh).

@@ -1,5 +1,5 @@
 // ARPACK shift-invert modes against Eigen's dense generalised solver on a small 3D frame, and
-// the residual / mass-orthonormality checks of SPEC 1.2.
+// the residual / mass-orthonormality checks of docs/model.md.
 #include <gtest/gtest.h>
 
 #include "crane_twin/structure/modal_analysis.hpp"

@@ -1,4 +1,4 @@
-// The pendulum rope (rope.model: pendulum, issue 7): its force and tangent against finite
+// The pendulum rope (rope.model: pendulum): its force and tangent against finite
 // differences, its mass and statics against closed form, its swing and bounce frequencies
 // against the closed form of a straight bar with an end mass, energy balance, the slack rope,
 // hoisting, and agreement with the ANCF rope where the pendulum's assumptions hold.

@@ -1,4 +1,4 @@
-// Rope mode sets for the reduced model (SPEC 1.6, issue 4): cold modes against the dense
+// Rope mode sets for the reduced model (docs/model.md): cold modes against the dense
 // solver and warm (subspace-iteration) updates against a fresh solve.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Scene loader validation (SPEC 2): each malformed input class is refused with a message that
+// Scene loader validation (docs/scenes.md): each malformed input class is refused with a message that
 // names the file and the key.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Inertial loads of slewing on the structure (slewing.inertial_loads, SPEC 1.4, issues 5 and 7):
+// Inertial loads of slewing on the structure (slewing.inertial_loads, docs/model.md):
 // the load vector against fields built here from the mesh, its modal projection, the rigid
 // slewing mode's inertia against the rotating part's mass distribution, and the structure's
 // response in a run against the static solution of the same load.

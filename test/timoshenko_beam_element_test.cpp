@@ -1,4 +1,4 @@
-// Closed-form checks of the 3D Timoshenko beam element (SPEC 1.2): tip deflection with shear,
+// Closed-form checks of the 3D Timoshenko beam element (docs/model.md): tip deflection with shear,
 // Euler-Bernoulli cantilever frequencies, axial and torsional frequencies, rigid-body modes,
 // and mesh convergence where shear matters. Eigenvalues here come from Eigen's dense solver,
 // independent of the ARPACK path used for the crane.

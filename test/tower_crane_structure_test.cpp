@@ -1,4 +1,4 @@
-// The T8036 structure generated from config/cranes/t8036.yaml against SPEC 1.2's targets.
+// The T8036 structure generated from config/cranes/t8036.yaml against docs/model.md's targets.
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -20,7 +20,7 @@ const TowerCraneStructure& t8036() {
 
 TEST(TowerCraneStructure, SizeNearThePapersModel) {
   const auto& s = t8036();
-  // Paper: 701 nodes, 1500 elements; SPEC allows 10 %.
+  // Paper: 701 nodes, 1500 elements; the generated model is to land within 10 % of that.
   EXPECT_NEAR(static_cast<double>(s.nodes.size()), 701.0, 70.1);
   EXPECT_NEAR(static_cast<double>(s.members.size()), 1500.0, 150.0);
   int clampedNodes = 0;
@@ -76,7 +76,7 @@ TEST(TowerCraneStructure, JibTipDeflectionUnderMaxRadiusLoad) {
   const auto& s = t8036();
   const Eigen::VectorXd u = staticTrolleyLoadDisplacement(s, 3600.0, 80.0, 9.81);
   const double dz = jibTipDisplacement(s, u).z();
-  // SPEC 1.2 sanity range for the jib's deflection (its own bending: the mast tilt of a 65 m
+  // docs/model.md sanity range for the jib's deflection (its own bending: the mast tilt of a 65 m
   // freestanding mast under 2.8 MN m adds about 0.8 m more; docs/model.md discusses it).
   const double bend = jibBendingTipDz(s, u);
   EXPECT_LT(bend, -0.05);

@@ -1,4 +1,4 @@
-// crane_sim: the command-line tool of SPEC 3.1 (no ROS). Exit status 0 on success, 2 on bad
+// crane_sim: the command-line tool of docs/cli.md (no ROS). Exit status 0 on success, 2 on bad
 // input (message on stderr), 1 on a numerical failure.
 #include <CLI/CLI.hpp>
 #include <unistd.h>
@@ -49,11 +49,11 @@ int runInfo(const SceneArgs& a) {
   std::printf("rope_elements,%d\n", m.scene.rope.elements);
   std::printf("rope_dofs,%d\n", m.ropeDofs());
   std::printf("rope_mass,%.3f\n", m.ropeMass());
-  // Beyond SPEC 3.1's required keys: what was built and the static load check of SPEC 1.2.
+  // Beyond docs/cli.md's required keys: what was built and the static load check of docs/model.md.
   std::printf("structure_model,%s\n", m.scene.structure_model.c_str());
   std::printf("rope_model,%s\n", m.scene.rope.model.c_str());
   std::printf("end_mass,%.1f\n", m.end_mass);
-  // What a run of this scene integrates (issue 7: only what the scene calls for is built).
+  // What a run of this scene integrates (only what the scene calls for is built).
   const ct::Scene& sc = m.scene;
   int structureCoords = 0;
   if (m.structure && sc.structure_model == "modal") structureCoords = sc.structure_modes;
@@ -135,7 +135,7 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   const bool bar = !r.quiet && isatty(fileno(stdout)) && isatty(fileno(stderr));
   if (series) series << ct::kSeriesHeader << "\n";
   if (nodes) nodes << "t,node,x,y,z\n";
-  // Physical warnings (issue 7): each kind reported on stderr when first seen, with a count of
+  // Physical warnings: each kind reported on stderr when first seen, with a count of
   // the output rows that carried it at the end; the CSV carries them in every row.
   std::map<int, long> warned;
   auto emit = [&]() {
@@ -278,20 +278,20 @@ int main(int argc, char** argv) {
   RunArgs runOpts;
   CLI::App* run = app.add_subcommand("run", "integrate the scene and write the time series");
   addSceneArgs(run, runArgs);
-  run->add_option("--out", runOpts.out, "time-series CSV (SPEC 3.1 columns)");
+  run->add_option("--out", runOpts.out, "time-series CSV (docs/cli.md columns)");
   run->add_option("--nodes", runOpts.nodes, "rope nodes CSV: t,node,x,y,z");
   run->add_flag("--quiet", runOpts.quiet, "no progress bar");
   CLI::App* stat = app.add_subcommand("static", "print the static equilibrium as key,value");
   addSceneArgs(stat, staticArgs);
   std::string cmpA, cmpB, cmpNA, cmpNB;
-  CLI::App* cmp = app.add_subcommand("compare", "SPEC 4 error metrics of run A against run B");
+  CLI::App* cmp = app.add_subcommand("compare", "docs/accuracy-vs-time.md error metrics of run A against run B");
   cmp->add_option("a", cmpA, "time-series CSV of run A")->required();
   cmp->add_option("b", cmpB, "time-series CSV of run B (the reference)")->required();
   cmp->add_option("--nodes-a", cmpNA, "nodes CSV of run A");
   cmp->add_option("--nodes-b", cmpNB, "nodes CSV of run B");
   SceneArgs sweepArgs;
   SweepArgs sweepOpts;
-  CLI::App* sweep = app.add_subcommand("sweep", "accuracy against wall time, full and reduced (SPEC 5)");
+  CLI::App* sweep = app.add_subcommand("sweep", "accuracy against wall time, full and reduced (docs/accuracy-vs-time.md)");
   addSceneArgs(sweep, sweepArgs);
   sweep->add_option("--out", sweepOpts.out, "CSV of the results");
   sweep->add_flag("--quick", sweepOpts.quick, "a few settings only");

@@ -20,6 +20,23 @@ void completeStep(const GeneralizedAlpha& ga, const CoupledState& start, double 
   s.newton_iterations = iterations;
 }
 
+void prepareSupportState(const RopeSupport& support, CoupledState& s) {
+  const int m = support.size();
+  if (s.z.size() != m) s.z = Eigen::VectorXd::Zero(m);
+  if (s.zd.size() != m) s.zd = Eigen::VectorXd::Zero(m);
+  s.zdd = Eigen::VectorXd::Zero(m);
+}
+
+void storeConsistentAccelerations(const RopeSupport& support, const Eigen::VectorXd& qdd,
+                                  const Eigen::Vector3d& lambda, const Eigen::VectorXd& Azr,
+                                  CoupledState& s) {
+  s.qdd = qdd;
+  s.a = s.qdd;
+  s.lambda = lambda;
+  if (support.size() > 0) s.zdd = Azr + support.solvePointForce(s.lambda);
+  s.za = s.zdd;
+}
+
 double constraintError(const RopeSupport& support, const CoupledState& s) {
   return (s.q.head<3>() - support.point(s.z)).norm();
 }

@@ -11,6 +11,15 @@ namespace crane_twin {
 
 namespace {
 
+// A key whose value must lie within a crane's limits [lo, hi] (what names the limits).
+void checkWithin(ConfigNode& n, const std::string& key, double value, double lo, double hi,
+                 const std::string& what) {
+  if (value < lo || value > hi) {
+    n.fail(key, "must be within the crane's " + what + " [" + std::to_string(lo) + ", " +
+                    std::to_string(hi) + "] m");
+  }
+}
+
 std::string resolveCraneFile(const std::string& scene_path, const std::string& name) {
   namespace fs = std::filesystem;
   if (name.size() > 5 && name.substr(name.size() - 5) == ".yaml") {
@@ -89,10 +98,9 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     r.bending_stiffness = n.number("bending_stiffness", def.bending_stiffness, Bounds::nonNegative());
     r.breaking_force = n.number("breaking_force", def.breaking_force, Bounds::positive());
     n.finish();
-    if (s.crane && (r.length < s.crane->min_rope_length || r.length > s.crane->max_rope_length)) {
-      n.fail("length", "must be within the crane's rope length limits [" +
-                           std::to_string(s.crane->min_rope_length) + ", " +
-                           std::to_string(s.crane->max_rope_length) + "] m");
+    if (s.crane) {
+      checkWithin(n, "length", r.length, s.crane->min_rope_length, s.crane->max_rope_length,
+                  "rope length limits");
     }
   }
   {
@@ -104,10 +112,9 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     ConfigNode n = root.map("trolley");
     s.trolley_radius = n.number("radius", s.crane ? s.crane->max_radius : 0.0, Bounds::any());
     n.finish();
-    if (s.crane && (s.trolley_radius < s.crane->min_radius || s.trolley_radius > s.crane->max_radius)) {
-      n.fail("radius", "must be within the crane's radius limits [" +
-                           std::to_string(s.crane->min_radius) + ", " +
-                           std::to_string(s.crane->max_radius) + "] m");
+    if (s.crane) {
+      checkWithin(n, "radius", s.trolley_radius, s.crane->min_radius, s.crane->max_radius,
+                  "radius limits");
     }
   }
   {

@@ -89,7 +89,7 @@ Eigen::VectorXd AncfRope::straight(const Eigen::Vector3d& top, const Eigen::Vect
   return q;
 }
 
-// r(xi) = S(xi) e per element (SPEC 1.1), xi = k / per_element.
+// r(xi) = S(xi) e per element (docs/model.md), xi = k / per_element.
 std::vector<Eigen::Vector3d> sampleRopeCurve(const Eigen::VectorXd& q, double l,
                                              int per_element) {
   if (per_element < 1) throw std::invalid_argument("rope samples per element must be >= 1");

@@ -81,7 +81,7 @@ NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
   if (s.snapshot.samples_per_element < 1 || s.snapshot.samples_per_element > 64) {
     throw InputError("parameter '~rope_samples_per_element' must be in 1..64");
   }
-  if (s.real_time_factor == 0.0) s.publish_clock = true;  // SPEC 3.2: 0 drives /clock
+  if (s.real_time_factor == 0.0) s.publish_clock = true;  // docs/ros.md: 0 drives /clock
   return s;
 }
 

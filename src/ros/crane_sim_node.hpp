@@ -1,4 +1,4 @@
-// crane_sim_node (SPEC 3.2): a thin ROS 1 adapter over the ROS-free simulation. It owns one
+// crane_sim_node (docs/ros.md): a thin ROS 1 adapter over the ROS-free simulation. It owns one
 // Simulation, paces it (real_time_factor), feeds it operator commands (checked by
 // command_guard, timed out by CommandWatchdog, or replayed from a bag), and publishes what
 // snapshotOf() computes. Nothing here is physics.

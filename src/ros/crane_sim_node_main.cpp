@@ -1,4 +1,4 @@
-// crane_sim_node: the ROS 1 entry point (SPEC 3.2). Bad parameters or scene: a message naming
+// crane_sim_node: the ROS 1 entry point (docs/ros.md). Bad parameters or scene: a message naming
 // what is wrong and exit status 2, like crane_sim.
 #include <ros/ros.h>
 

@@ -1,4 +1,4 @@
-// CraneSnapshot -> ROS messages (SPEC 3.2). Pure conversions: no publishing, no state.
+// CraneSnapshot -> ROS messages (docs/ros.md). Pure conversions: no publishing, no state.
 #pragma once
 
 #include <geometry_msgs/TransformStamped.h>
@@ -24,7 +24,7 @@ std::vector<geometry_msgs::TransformStamped> toTransforms(const CraneSnapshot& s
 /// Rope LINE_STRIP, payload SPHERE, deformed structure LINE_LIST (frame world).
 visualization_msgs::MarkerArray toMarkers(const CraneSnapshot& s, const ros::Time& stamp,
                                           double payload_diameter);
-/// The SPEC 3.1 row with the step cost [s] and real-time factor.
+/// The docs/cli.md row with the step cost [s] and real-time factor.
 CraneState toStateMessage(const CraneSnapshot& s, const ros::Time& stamp, double step_cost,
                           double real_time_factor, const std::string& model);
 

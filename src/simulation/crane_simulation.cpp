@@ -16,20 +16,18 @@ CraneSimulation::CraneSimulation(const CraneModel& m) : SupportedRopeSimulation(
     throw InputError(sc.file + ": key 'rope.model': the ANCF rope cannot run a pendulum scene "
                      "(makeSimulation builds PendulumCraneSimulation for it)");
   }
-  const double trolleyMass = sc.crane ? sc.crane->trolley_mass : 0.0;
   rope_ = std::make_unique<AncfRope>(sc.rope.elements, sc.rope.length,
                                      model.rope.mass_per_length, model.rope.axial_stiffness,
                                      model.rope.bending_stiffness, model.end_mass,
-                                     Eigen::Vector3d(0.0, 0.0, -sc.gravity), trolleyMass);
+                                     gravityVector(), trolleyMass());
   solver_ = std::make_unique<FullOrderSolver>(*rope_, *support_, GeneralizedAlpha::forScene(sc),
                                               sc.time_step);
   solver_->setRopeDamping(sc.rope.damping);
 }
 
-CoupledState CraneSimulation::staticState(Eigen::Vector3d* holding_force) {
-  const Scene& sc = model_.scene;
-  return solver_->solveSwingEquilibrium(sc.swing_deg * M_PI / 180.0,
-                                        sc.swing_azimuth_deg * M_PI / 180.0, holding_force);
+CoupledState CraneSimulation::swingEquilibrium(double swing_rad, double az_rad,
+                                  Eigen::Vector3d* holding_force) {
+  return solver_->solveSwingEquilibrium(swing_rad, az_rad, holding_force);
 }
 
 void CraneSimulation::resetDrives() {

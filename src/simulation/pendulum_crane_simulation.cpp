@@ -8,19 +8,17 @@ namespace crane_twin {
 PendulumCraneSimulation::PendulumCraneSimulation(const CraneModel& m)
     : SupportedRopeSimulation(m) {
   const Scene& sc = model_.scene;
-  const double trolleyMass = sc.crane ? sc.crane->trolley_mass : 0.0;
   rope_ = std::make_unique<PendulumRope>(sc.rope.length, model_.rope.mass_per_length,
                                          model_.rope.axial_stiffness, model_.end_mass,
-                                         Eigen::Vector3d(0.0, 0.0, -sc.gravity), trolleyMass);
+                                         gravityVector(), trolleyMass());
   solver_ = std::make_unique<PendulumSolver>(*rope_, *support_, GeneralizedAlpha::forScene(sc),
                                              sc.time_step);
   solver_->setRopeDamping(sc.rope.damping);
 }
 
-CoupledState PendulumCraneSimulation::staticState(Eigen::Vector3d* holding_force) {
-  const Scene& sc = model_.scene;
-  return solver_->solveSwingEquilibrium(sc.swing_deg * M_PI / 180.0,
-                                        sc.swing_azimuth_deg * M_PI / 180.0, holding_force);
+CoupledState PendulumCraneSimulation::swingEquilibrium(double swing_rad, double az_rad,
+                                          Eigen::Vector3d* holding_force) {
+  return solver_->solveSwingEquilibrium(swing_rad, az_rad, holding_force);
 }
 
 Eigen::VectorXd PendulumCraneSimulation::straightRope(const Eigen::Vector3d& top,

@@ -51,6 +51,14 @@ std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
 SupportedRopeSimulation::SupportedRopeSimulation(const CraneModel& model)
     : model_(model), drives_(model_.scene), support_(makeRopeSupport(model_)) {}
 
+double SupportedRopeSimulation::trolleyMass() const {
+  return model_.scene.crane ? model_.scene.crane->trolley_mass : 0.0;
+}
+
+Eigen::Vector3d SupportedRopeSimulation::gravityVector() const {
+  return Eigen::Vector3d(0.0, 0.0, -model_.scene.gravity);
+}
+
 void SupportedRopeSimulation::resetDrivesAndPose() {
   const Scene& sc = model_.scene;
   drives_.reset();
@@ -63,6 +71,12 @@ bool SupportedRopeSimulation::advanceDrives(double t, double dt) {
   support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
   support_->setSlewMotion(drives_.slewRate(), drives_.slewAcceleration());
   return true;
+}
+
+CoupledState SupportedRopeSimulation::staticState(Eigen::Vector3d* holding_force) {
+  const Scene& sc = model_.scene;
+  return swingEquilibrium(sc.swing_deg * M_PI / 180.0, sc.swing_azimuth_deg * M_PI / 180.0,
+                          holding_force);
 }
 
 CoupledState SupportedRopeSimulation::sceneInitialState() {

@@ -210,9 +210,7 @@ CoupledState FullOrderSolver::solveSwingEquilibrium(double swing_rad, double az_
 
 void FullOrderSolver::initializeAccelerations(CoupledState& s) {
   const int n = rope_.dofs(), m = support_.size();
-  if (s.z.size() != m) s.z = Eigen::VectorXd::Zero(m);
-  if (s.zd.size() != m) s.zd = Eigen::VectorXd::Zero(m);
-  s.zdd = Eigen::VectorXd::Zero(m);
+  prepareSupportState(support_, s);
   Eigen::VectorXd Q, Azr, rz;
   const Eigen::Matrix3d G = support_.setIterationWeights(1.0, 0.0, 0.0);
   assemble(s.q, s.v, 1.0, 0.0, 0.0, G, Q);
@@ -221,11 +219,7 @@ void FullOrderSolver::initializeAccelerations(CoupledState& s) {
       condensedRhs(rope_.gravityForce() - Q, rz, Eigen::Vector3d::Zero(), Azr);
   factorize("initial accelerations");
   const Eigen::VectorXd x = ldlt_.solve(rhs);
-  s.qdd = x.head(n);
-  s.a = s.qdd;
-  s.lambda = x.tail<3>();
-  if (m > 0) s.zdd = Azr + support_.solvePointForce(s.lambda);
-  s.za = s.zdd;
+  storeConsistentAccelerations(support_, x.head(n), x.tail<3>(), Azr, s);
 }
 
 // One step of size h_, halved where Newton fails (stepWithHalving).

@@ -52,9 +52,7 @@ CoupledState PendulumSolver::solveSwingEquilibrium(double swing_rad, double az_r
 
 void PendulumSolver::initializeAccelerations(CoupledState& s) {
   const int m = support_.size();
-  if (s.z.size() != m) s.z = Eigen::VectorXd::Zero(m);
-  if (s.zd.size() != m) s.zd = Eigen::VectorXd::Zero(m);
-  s.zdd = Eigen::VectorXd::Zero(m);
+  prepareSupportState(support_, s);
   const Eigen::Matrix3d G = support_.setIterationWeights(1.0, 0.0, 0.0);
   Vector6 Q, Qd;
   rope_.elasticForce(s.q, Q);
@@ -71,11 +69,7 @@ void PendulumSolver::initializeAccelerations(CoupledState& s) {
     rhs.tail<3>() += support_.pointMotion(Azr);
   }
   const Vector9 x = A.partialPivLu().solve(rhs);
-  s.qdd = x.head<6>();
-  s.a = s.qdd;
-  s.lambda = x.tail<3>();
-  if (m > 0) s.zdd = Azr + support_.solvePointForce(s.lambda);
-  s.za = s.zdd;
+  storeConsistentAccelerations(support_, x.head<6>(), x.tail<3>(), Azr, s);
 }
 
 void PendulumSolver::step(CoupledState& s) {

@@ -1,4 +1,4 @@
-// libFuzzer target for the scene loader (issue 7): any bytes as a scene file must give a Scene
+// libFuzzer target for the scene loader: any bytes as a scene file must give a Scene
 // or an InputError naming the file and key, never a crash, a hang, another exception type or
 // a Scene holding a non-finite number. Built and run by scripts/fuzz_scene_loader.sh.
 #include <cmath>

@@ -1,4 +1,4 @@
-// rostest of crane_sim_node's ROS interface (SPEC 3.2, issue 6), run by node_interface.test
+// rostest of crane_sim_node's ROS interface (docs/ros.md), run by node_interface.test
 // against the live T8036 scene at real time: joint names and the rope tension they carry, the
 // TF tree, the markers, bad messages (the node lives on, the state stays finite), a trolley
 // command followed as the drive's limits say, the command timeout, pause and reset.

@@ -1,9 +1,9 @@
-// rostests replay_matches_full_order.test and replay_reproduces_the_run.test (issue 6): a
+// rostests replay_matches_full_order.test and replay_reproduces_the_run.test: a
 // simulator (reduced, or full order again), driven by the command stream of a recorded
 // full-order run (test/data/full_order_run.bag, made by scripts/record_reference_bag.sh
 // through record.launch), reproduces that run: states matched by header stamp (simulated
 // time), drives identical, payload within ~payload_bound (0.15 m for the reduced model, the
-// bound of SPEC 4 / issue 4; round-off for the full model).
+// bound of docs/accuracy-vs-time.md; round-off for the full model).
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <rosbag/bag.h>

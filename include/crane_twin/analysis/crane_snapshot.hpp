@@ -1,11 +1,11 @@
-// What a viewer of a running simulation needs at one instant (SPEC 3.2), computed without ROS:
+// What a viewer of a running simulation needs at one instant (docs/ros.md), computed without ROS:
 // the time-series values, the drive joints, the frames of the crane's reference points at
 // their deformed positions, the rope as a curve sampled from its shape functions, and
 // the deformed structure as line segments. The ROS node only converts this to messages.
 //
 // Frames (all right-handed, metres):
 //   world                      z up, origin at the centre of the mast base;
-//   slewing = Rz(theta)        the superstructure's frame, same origin (SPEC 1.4);
+//   slewing = Rz(theta)        the superstructure's frame, same origin (docs/model.md);
 //   jib_tip, cab, trolley      in the slewing frame: undeformed point + displacement u (no
 //                              rotation: the structure is linear, its node rotations small);
 //   hook, payload              in the world frame at the rope's end node, z axis up along the

@@ -1,4 +1,4 @@
-// Error metrics of SPEC 4 between two runs of the same scene (reduced against full, or any
+// Error metrics of docs/accuracy-vs-time.md between two runs of the same scene (reduced against full, or any
 // setting against a reference): payload error, rope RMS error over all nodes (paper eq. 18 with
 // its square restored), cab and jib-tip errors, each the max over the common output times.
 #pragma once
@@ -38,7 +38,7 @@ ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b);
 /// material points. Throws InputError for fewer than 2 nodes or n < 2.
 std::vector<Eigen::Vector3d> resampleRope(const std::vector<Eigen::Vector3d>& nodes, std::size_t n);
 
-/// Read a SPEC 3.1 time-series CSV (and optionally its nodes CSV). Throws InputError naming the
+/// Read a docs/cli.md time-series CSV (and optionally its nodes CSV). Throws InputError naming the
 /// file, line and column for a missing column, a malformed number or a ragged row.
 Trajectory readTrajectory(const std::string& series_csv, const std::string& nodes_csv = "");
 

@@ -1,4 +1,4 @@
-// Operator commands from outside (the ROS node's crane/command topic, SPEC 3.2) checked before
+// Operator commands from outside (the ROS node's crane/command topic, docs/ros.md) checked before
 // they reach the drives, and the command timeout. ROS-free, so both are unit-tested here.
 #pragma once
 
@@ -18,11 +18,11 @@ struct CommandVerdict {
 };
 
 /// Rejects a command with a non-finite rate, any motion without a crane, or a rate above
-/// kAbsurdCommandFactor x the drive's speed limit (SPEC 1.4); flags one above the limit.
+/// kAbsurdCommandFactor x the drive's speed limit (docs/model.md); flags one above the limit.
 /// The reason names the field, its value and the limit.
 CommandVerdict checkCommand(const Scene& scene, const CommandEntry& command);
 
-/// The command timeout of SPEC 3.2, in simulated seconds: a manual command older than
+/// The command timeout of docs/ros.md, in simulated seconds: a manual command older than
 /// `timeout` ramps the drives to rest (the caller then sets a zero command).
 class CommandWatchdog {
  public:

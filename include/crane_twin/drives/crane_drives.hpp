@@ -1,4 +1,4 @@
-// The three crane drives of a scene (SPEC 1.4): slewing angle theta [rad], trolley radius s [m]
+// The three crane drives of a scene (docs/model.md): slewing angle theta [rad], trolley radius s [m]
 // and hanging rope length L [m], each a DriveAxis following the active rate command: the
 // scene's `commands:` schedule, or an operator command set at run time (the node-facing API),
 // which overrides the schedule from then on. Whichever rope model a run integrates (pendulum,
@@ -60,7 +60,7 @@ class CraneDrives {
   std::optional<CommandEntry> manual_;
 };
 
-/// The physical warnings of an output row (issue 7) from its rope_top_tension and the drives:
+/// The physical warnings of an output row from its rope_top_tension and the drives:
 /// tension_ratio = tension / breaking force of all falls, load_chart_ratio = payload / allowed
 /// load at the current radius, and the warning bits (over breaking force, outside the load
 /// chart, rope length or radius at a limit, a command limited).

@@ -1,5 +1,5 @@
 // One crane drive (slewing angle, trolley radius or hanging rope length) following an operator's
-// rate command within its speed and acceleration limits (SPEC 1.4): the speed moves toward the
+// rate command within its speed and acceleration limits (docs/model.md): the speed moves toward the
 // command at the acceleration limit (a trapezoidal profile for a step command); a command
 // beyond the speed limit is limited to it and flagged; near a position limit the drive brakes
 // at the acceleration limit so that it stops at the limit, and a command pushing past the limit

@@ -1,4 +1,4 @@
-// 3D gradient-deficient ANCF cable element (SPEC 1.1).
+// 3D gradient-deficient ANCF cable element (docs/model.md).
 //
 // Element coordinates e = [r1, r1_x, r2, r2_x] (12 values, world frame, m and -):
 // nodal positions and axial slope vectors. With xi = x / l, l the unstretched length,

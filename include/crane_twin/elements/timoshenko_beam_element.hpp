@@ -1,4 +1,4 @@
-// Two-node 3D Timoshenko (shear) beam element, 6 DOF per node (SPEC 1.2).
+// Two-node 3D Timoshenko (shear) beam element, 6 DOF per node (docs/model.md).
 //
 // Node DOF order [u_x, u_y, u_z, th_x, th_y, th_z] in the global frame (m, rad).
 // Local axes: x1 along node1 -> node2, y1 in the plane of x1 and the orientation vector v,

@@ -63,6 +63,15 @@ double correctSupport(const GeneralizedAlpha& ga, const RopeSupport& support, do
 void completeStep(const GeneralizedAlpha& ga, const CoupledState& start, double h, int iterations,
                   CoupledState& s);
 
+/// Before a consistent-acceleration solve: z and z' sized to the support (zero where unset), z''
+/// zero.
+void prepareSupportState(const RopeSupport& support, CoupledState& s);
+/// After it: q'' and lambda from the solve, z'' = A_z^-1 (r_z + D^T lambda) from Azr = A_z^-1 r_z,
+/// and the generalized-alpha variables a = q'', z_a = z'' of a start (Arnold & Bruls 2007).
+void storeConsistentAccelerations(const RopeSupport& support, const Eigen::VectorXd& qdd,
+                                  const Eigen::Vector3d& lambda, const Eigen::VectorXd& Azr,
+                                  CoupledState& s);
+
 /// |C| = |r_0 - r_p(z)| [m]: how far the rope's top node is from the support point.
 double constraintError(const RopeSupport& support, const CoupledState& s);
 

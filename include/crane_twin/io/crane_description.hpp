@@ -44,7 +44,7 @@ struct DriveLimits {
   double max_acceleration = 0.0;
 };
 
-/// Default wire rope data per fall (SPEC 1.1).
+/// Default wire rope data per fall (docs/model.md).
 struct RopeSpec {
   double mass_per_length = 1.9;
   double axial_stiffness = 2.2e7;
@@ -77,7 +77,7 @@ struct CraneDescription {
   double jibRailHeight() const { return mast_height + slewing_height; }
 };
 
-/// Allowed payload [kg] at radius r [m] (the load chart, SPEC 1.2 data): max_load out to the
+/// Allowed payload [kg] at radius r [m] (the load chart, docs/model.md data): max_load out to the
 /// radius where max_load reaches the rated moment, then a load moment falling linearly in r
 /// from rated_moment there to load_at_max_radius x max_radius at the jib tip. (An assumption
 /// shaped like published T8036 charts; the paper gives only the three figures.)

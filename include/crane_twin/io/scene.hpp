@@ -1,4 +1,4 @@
-// Scene files (SPEC 2): what to simulate and which effects to include. Every key is validated
+// Scene files (docs/scenes.md): what to simulate and which effects to include. Every key is validated
 // on load; a wrong type, a value out of range, an unknown key or a missing file raises an
 // InputError naming the file and the dotted key.
 #pragma once
@@ -68,7 +68,7 @@ struct Scene {
   double hookBlockMass() const { return crane ? crane->hook_block_mass : 0.0; }
 };
 
-/// `random_commands:` of a scene (SPEC 6 hard case): a seeded, reproducible schedule.
+/// `random_commands:` of a scene (docs/stability.md hard case): a seeded, reproducible schedule.
 struct RandomCommandSpec {
   int seed = 0;
   double interval = 1.0;   ///< s between entries

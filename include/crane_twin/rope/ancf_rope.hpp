@@ -1,4 +1,4 @@
-// The hanging hoist rope as a chain of ANCF cable elements (SPEC 1.1), with the hook block and
+// The hanging hoist rope as a chain of ANCF cable elements (docs/model.md), with the hook block and
 // payload as a point mass on the last node and the trolley (when the rope hangs from a crane)
 // as a point mass on the first: the top node coincides with the trolley point through the
 // constraint, so the trolley's inertia and weight act there.
@@ -36,7 +36,7 @@ class AncfRope {
   const SparseMatrix& massMatrix() const { return M_; }
   const Eigen::VectorXd& gravityForce() const { return Fg_; }
 
-  /// Hoisting by uniform rescaling (SPEC 1.4): every element's reference length becomes
+  /// Hoisting by uniform rescaling (docs/model.md): every element's reference length becomes
   /// length / elements; M and F_g are rebuilt (rope mass mu L exactly, same pattern). Throws
   /// std::invalid_argument for a non-positive length.
   void setLength(double length);
@@ -68,7 +68,7 @@ class AncfRope {
 };
 
 /// Points r(x) of an ANCF rope with coordinates q (6 per node) and element length l, sampled
-/// `per_element` times per element plus the end node (SPEC 1.1 shape functions).
+/// `per_element` times per element plus the end node (docs/model.md shape functions).
 std::vector<Eigen::Vector3d> sampleRopeCurve(const Eigen::VectorXd& q, double l,
                                              int per_element);
 

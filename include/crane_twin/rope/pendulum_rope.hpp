@@ -1,4 +1,4 @@
-// The cheapest rung of the rope ladder (SPEC 2, `rope.model: pendulum`): the hanging rope as
+// The cheapest rung of the rope ladder (docs/scenes.md, `rope.model: pendulum`): the hanging rope as
 // one straight elastic bar from its top point r_0 to its end point r_1 (hook block and
 // payload), with the rope's mass and no ANCF.
 //

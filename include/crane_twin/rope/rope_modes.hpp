@@ -1,13 +1,14 @@
 // Lowest modes of the rope linearised at a state e_m with its top node's position held
-// (SPEC 1.6): K_ii(e_m) phi = w^2 M_ii phi over the rope coordinates without the top node's three
+// (docs/model.md): K_ii(e_m) phi = w^2 M_ii phi over the rope coordinates without the top node's three
 // position DOFs (the top slope stays free), mass-normalised. With the three rigid translations
 // of the whole rope they span the reduced rope's motion (ReducedOrderSolver): the top moves by
 // the translations, which cost no elastic force (the energy is translation-invariant).
 //
 // Cold solve: ARPACK shift-invert (a few modes) or Eigen's dense generalised solver (a large
 // fraction of the spectrum, where Lanczos needs nearly the whole space anyway).
-// Warm update: one block inverse (subspace) iteration from the previous basis with a sparse
-// LDL^T of K_ii - sigma M_ii, then Rayleigh-Ritz on the block (Bathe's subspace iteration). The
+// Warm update: `sweeps` block inverse (subspace) iterations (default two) from the previous
+// basis with a sparse LDL^T of K_ii - sigma M_ii, then one Rayleigh-Ritz step on the block
+// (Bathe's subspace iteration). The
 // block carries `guard` extra vectors beyond the kept modes so the highest kept modes converge.
 #pragma once
 

@@ -1,4 +1,4 @@
-// What holds the rope's top node (SPEC 1.3): a fixed anchor (crane: none, or a rigid
+// What holds the rope's top node (docs/model.md): a fixed anchor (crane: none, or a rigid
 // structure), or the flexible crane structure in modal or full FE coordinates z.
 //
 // The support point is linear in z (small-deformation structure, slewing angle and trolley
@@ -44,15 +44,15 @@ class RopeSupport {
   /// 1/2 z'^T M_z z' + 1/2 z^T K_z z [J] (strain energy measured from the self-weight state).
   virtual double energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const = 0;
   /// Move the support point with the drives: slewing angle theta [rad] and trolley radius [m]
-  /// (SPEC 1.4). The constraint then holds the rope at the new point from the next step on
+  /// (docs/model.md). The constraint then holds the rope at the new point from the next step on
   /// (a rheonomic constraint). No effect on a fixed anchor.
   virtual void setPose(double /*theta*/, double /*radius*/) {}
   /// Slewing rate theta' [rad/s] and acceleration theta'' [rad/s^2] of the step to come, for
-  /// the inertial loads of slewing on the structure (SPEC 1.4, `slewing.inertial_loads`;
+  /// the inertial loads of slewing on the structure (docs/model.md, `slewing.inertial_loads`;
   /// StructureSupportBase). No effect on a support without structural coordinates.
   virtual void setSlewMotion(double /*rate*/, double /*acceleration*/) {}
   /// Displacement of the cab and jib-tip reference points from the undeformed structure,
-  /// slewing frame [m] (SPEC 3.1 cab_d*, jib_tip_d*); zero for an anchor.
+  /// slewing frame [m] (docs/cli.md cab_d*, jib_tip_d*); zero for an anchor.
   virtual Eigen::Vector3d cabDisplacement(const Eigen::VectorXd& z) const = 0;
   virtual Eigen::Vector3d jibTipDisplacement(const Eigen::VectorXd& z) const = 0;
   /// The structure mesh behind the support (nullptr for an anchor without a crane).

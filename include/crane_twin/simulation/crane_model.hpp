@@ -12,7 +12,7 @@
 
 namespace crane_twin {
 
-/// Equivalent single cable of an n-fall reeving (SPEC 1.1): n EA, n EI and n times the mass
+/// Equivalent single cable of an n-fall reeving (docs/model.md): n EA, n EI and n times the mass
 /// per metre of one fall.
 struct EquivalentRope {
   double mass_per_length = 0.0;    ///< n mu [kg/m]

@@ -1,7 +1,7 @@
-// A scene run at full order (SPEC 1.5): the ANCF rope, what holds it (a fixed anchor for
-// crane: none, the T8036 structure rigid, modal or in full coordinates), the drives (SPEC 1.4:
-// slewing, trolley, hoisting), the initial state of SPEC 2 (equilibrium with a holding force,
-// or stress-free), time stepping, and the SPEC 3.1 output rows. The ROS-free unit the CLI's
+// A scene run at full order (docs/model.md): the ANCF rope, what holds it (a fixed anchor for
+// crane: none, the T8036 structure rigid, modal or in full coordinates), the drives (docs/model.md:
+// slewing, trolley, hoisting), the initial state of docs/scenes.md (equilibrium with a holding force,
+// or stress-free), time stepping, and the docs/cli.md output rows. The ROS-free unit the CLI's
 // `run`, `static` and `modes --part rope` use; the reduced model builds on it.
 #pragma once
 
@@ -46,13 +46,13 @@ class CraneSimulation final : public SupportedRopeSimulation {
 
   /// The initial full-order state of the scene (what initialize() starts from).
   CoupledState initialState();
-  /// Static equilibrium of the scene (`initial.mode: equilibrium`, holding force included).
-  CoupledState staticState(Eigen::Vector3d* holding_force = nullptr) override;
   /// Rope modes (with the end mass) linearised at the static equilibrium without holding force:
   /// top node's position fixed, slope free.
   ModalBasis ropeModes(int count);
 
  protected:
+  CoupledState swingEquilibrium(double swing_rad, double az_rad,
+                                Eigen::Vector3d* holding_force) override;
   Eigen::VectorXd straightRope(const Eigen::Vector3d& top,
                                const Eigen::Vector3d& dir) const override;
   void initializeAccelerations(CoupledState& s) override;

@@ -25,12 +25,12 @@ class PendulumCraneSimulation final : public SupportedRopeSimulation {
   std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override;
   long halvedSteps() const override { return solver_->halvedSteps(); }
 
-  /// Static equilibrium of the scene (`initial.mode: equilibrium`; the holding force into *H).
-  CoupledState staticState(Eigen::Vector3d* holding_force = nullptr) override;
   double topTension(const CoupledState& s) const { return solver_->topTension(s); }
   const PendulumRope& rope() const { return *rope_; }
 
  protected:
+  CoupledState swingEquilibrium(double swing_rad, double az_rad,
+                                Eigen::Vector3d* holding_force) override;
   Eigen::VectorXd straightRope(const Eigen::Vector3d& top,
                                const Eigen::Vector3d& dir) const override;
   void initializeAccelerations(CoupledState& s) override { solver_->initializeAccelerations(s); }

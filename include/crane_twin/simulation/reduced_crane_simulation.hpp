@@ -1,4 +1,4 @@
-// A scene run with the reduced rope (rope.model: reduced, SPEC 1.6): the same rope, support and
+// A scene run with the reduced rope (rope.model: reduced, docs/model.md): the same rope, support and
 // initial equilibrium as the full-order model (CraneSimulation), integrated by
 // ReducedOrderSolver. Hoisting: every step that changes the rope's length rescales the expanded
 // state as the full model does and starts a new subdomain with a static-correction vector.
@@ -24,7 +24,7 @@
 namespace crane_twin {
 
 /// Rope modes kept for a scene: rope.mode_count if set, else mode_fraction of the rope DOF less
-/// the three translations, at least 1 (SPEC 1.6). Throws InputError naming the key.
+/// the three translations, at least 1 (docs/model.md). Throws InputError naming the key.
 int keptRopeModes(const CraneModel& model);
 int keptRopeModes(const Scene& scene);
 

@@ -1,5 +1,6 @@
-// What the CLI, the sweep and (later) the ROS node need of a running scene, whichever model
-// integrates it: step it, read the SPEC 3.1 output quantities, write the CSV rows.
+// What the CLI, the sweep and the ROS node need of a running scene, whichever model integrates
+// it (the full-order ANCF rope, the reduced rope or the pendulum rope): step it, read the output
+// quantities of docs/cli.md, write the CSV rows.
 #pragma once
 
 #include <Eigen/Dense>
@@ -15,7 +16,7 @@ struct CoupledState;
 class CraneDrives;
 class RopeSupport;
 
-/// One row of the SPEC 3.1 time series.
+/// One row of the docs/cli.md time series.
 struct SeriesValues {
   double t = 0.0;
   Eigen::Vector3d payload = Eigen::Vector3d::Zero(), payload_velocity = Eigen::Vector3d::Zero();
@@ -24,7 +25,7 @@ struct SeriesValues {
   double rope_top_tension = 0.0, rope_length = 0.0, slew_angle = 0.0, trolley_radius = 0.0;
   double energy = 0.0, constraint_error = 0.0;
   int subdomains = 0;
-  // Beyond the SPEC columns: the physical warnings a crane engineer expects (issue 7).
+  // Beyond the columns of the paper scenes: the physical warnings a crane engineer expects.
   double tension_ratio = 0.0;     ///< rope top tension / breaking force of all falls
   double load_chart_ratio = 0.0;  ///< payload / allowed load at the current radius (0: no crane)
   int warnings = 0;               ///< bit set of Warning
@@ -41,14 +42,14 @@ enum Warning : int {
 /// Human-readable name of one warning bit.
 const char* warningName(int bit);
 
-/// SPEC 3.1 time-series columns, in order.
+/// docs/cli.md time-series columns, in order.
 extern const char* const kSeriesHeader;
 void writeSeriesRow(std::ostream& out, const SeriesValues& v);
 
 class Simulation {
  public:
   virtual ~Simulation() = default;
-  /// Build the initial state of SPEC 2 (t = 0).
+  /// Build the initial state of docs/scenes.md (t = 0).
   virtual void initialize() = 0;
   /// One time step. Throws NumericalFailure.
   virtual void step() = 0;
@@ -59,8 +60,8 @@ class Simulation {
   virtual void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab, Eigen::Vector3d& jib_tip) const = 0;
   virtual int ropeNodes() const = 0;
   virtual Eigen::Vector3d ropeNode(int j) const = 0;
-  /// Operator command from now on, overriding the scene's schedule (the node-facing API, SPEC
-  /// 1.4). Throws std::invalid_argument for a non-finite value and InputError for what is not
+  /// Operator command from now on, overriding the scene's schedule (the node-facing API,
+  /// docs/model.md "Drives"). Throws std::invalid_argument for a non-finite value and InputError for what is not
   /// built; the state is unchanged then.
   virtual void setCommand(const CommandEntry& command) = 0;
   /// The state in the rope model's own full coordinates (ANCF q, or the pendulum's two points;
@@ -83,7 +84,8 @@ class Simulation {
   void writeNodeRows(std::ostream& out) const;
 };
 
-/// The simulation the scene's rope.model asks for (full or reduced). Throws InputError.
+/// The simulation the scene's rope.model asks for (CraneSimulation for full,
+/// ReducedCraneSimulation for reduced, PendulumCraneSimulation for pendulum). Throws InputError.
 std::unique_ptr<Simulation> makeSimulation(const CraneModel& model);
 
 }  // namespace crane_twin

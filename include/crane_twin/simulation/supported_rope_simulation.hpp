@@ -37,19 +37,26 @@ class SupportedRopeSimulation : public Simulation {
   /// Advance the drives by dt under the active command and move the support to their pose;
   /// false where nothing moved.
   bool advanceDrives(double t, double dt);
-  /// Static equilibrium of the scene (`initial.mode: equilibrium`), the holding force on the
-  /// end mass into *holding_force.
-  virtual CoupledState staticState(Eigen::Vector3d* holding_force = nullptr) = 0;
+  /// Static equilibrium of the scene (`initial.mode: equilibrium`: the chord at
+  /// `initial.swing_deg`, azimuth `initial.swing_azimuth_deg`), the horizontal force on the end
+  /// mass that holds it into *holding_force.
+  CoupledState staticState(Eigen::Vector3d* holding_force = nullptr);
 
  protected:
   /// Copies the model and builds its support (makeRopeSupport). Throws InputError.
   explicit SupportedRopeSimulation(const CraneModel& model);
+  /// Mass that moves with the trolley point [kg] (0 without a crane) and gravity (0, 0, -g).
+  double trolleyMass() const;
+  Eigen::Vector3d gravityVector() const;
   /// Drives at their start, the support at the scene's pose at rest.
   void resetDrivesAndPose();
   /// The initial state of the scene at t = 0 (docs/scenes.md, `initial`), accelerations
   /// consistent. Call after resetDrivesAndPose().
   CoupledState sceneInitialState();
 
+  /// Equilibrium with the chord at swing_rad from the vertical, azimuth az_rad (the solver's).
+  virtual CoupledState swingEquilibrium(double swing_rad, double az_rad,
+                                        Eigen::Vector3d* holding_force) = 0;
   /// The rope straight and unstretched from `top` along the unit direction `dir`, at rest.
   virtual Eigen::VectorXd straightRope(const Eigen::Vector3d& top,
                                        const Eigen::Vector3d& dir) const = 0;

@@ -1,4 +1,4 @@
-// Full-order (F-ANCF) dynamics and statics of the rope held by its support (SPEC 1.3, 1.5):
+// Full-order (F-ANCF) dynamics and statics of the rope held by its support (docs/model.md):
 // a fixed anchor (crane: none) or the crane structure in modal or full coordinates z.
 //
 // Index-3 DAE:  M q'' + Q(q) - F_g - F_ext + C_q^T lambda = 0,
@@ -56,7 +56,7 @@ class FullOrderSolver {
                            const Eigen::Vector3d& end_force);
 
   /// Equilibrium whose chord (top node to end node) makes swing_rad with the vertical at
-  /// azimuth az_rad, held by a horizontal force on the end mass (secant on the force). SPEC 2.
+  /// azimuth az_rad, held by a horizontal force on the end mass (secant on the force). docs/scenes.md.
   CoupledState solveSwingEquilibrium(double swing_rad, double az_rad,
                                   Eigen::Vector3d* holding_force = nullptr);
 

@@ -28,7 +28,7 @@ class PendulumSolver {
                  double time_step, NewtonSettings newton = {});
 
   /// Static equilibrium with the chord at swing_rad from the vertical (azimuth az_rad), held by
-  /// a horizontal force H on the end point (SPEC 2): the end point's balance gives
+  /// a horizontal force H on the end point (docs/scenes.md): the end point's balance gives
   /// tan(swing) = H / ((m_end + mu L / 2) g) and T = (m_end + mu L / 2) g / cos(swing); the
   /// support deflects under lambda = F_g,0 + T u (K_z z = D^T lambda). State at rest.
   CoupledState solveSwingEquilibrium(double swing_rad, double az_rad,

@@ -1,5 +1,5 @@
 // Reduced-order (R-ANCF) dynamics of the rope on its support: the paper's method (Yu et al.
-// 2024, eq. 6-17; SPEC 1.6).
+// 2024, eq. 6-17; docs/model.md).
 //
 // Subdomains. In the subdomain that starts at the rope state e_m the elastic force is
 // linearised, Q(e) = Q_m + K_m (e - e_m) (paper eq. 8-9), and the rope moves in
@@ -26,7 +26,7 @@
 // M-orthogonal projection onto the new basis, M_r w = B^T M x. The projection can only lose
 // kinetic energy; the loss 1/2 (v^T M v - w^T M_r w) is summed in `projectionEnergyLoss`.
 //
-// Co-rotational subdomains (issue 4, settings.corotational). The linear map moves a swinging
+// Co-rotational subdomains (settings.corotational). The linear map moves a swinging
 // rope along the tangent of its arc: after a chord rotation theta the payload sits L theta^2 / 2
 // off the arc, a spurious stretch the next linearisation turns into an axial force of
 // EA theta^2 / 2 (3.5 kN at delta = 0.5 m on the T8036's 60 m rope). The elastic force is
@@ -47,7 +47,7 @@
 // Hoisting subdomains (a step each, BasisUpdate::modes_and_correction or ritz) keep the linear
 // map: measured on the operator cycle, the frame there gave 5.0 m payload error (fixed: 5.6 mm).
 //
-// Hoisting (issue 5): the full model's scheme, uniform rescaling (CraneSimulation::
+// Hoisting: the full model's scheme, uniform rescaling (CraneSimulation::
 // applyRopeLength), applied to the expanded state, then a new subdomain at it (every length
 // change starts one). The fixed-top modes lack the shape a length change asks for: the rope's
 // stretch along its length (a truncated basis can only represent it through the modes that
@@ -87,7 +87,7 @@ struct ReducedSettings {
   /// subdomain whatever the deformation. Measured on t8036_slew90 (docs/model.md): 0.1 rad
   /// 0.051 m, 0.03 rad 5.3e-3 m, 0.01 rad 3.4e-3 m; the paper scenes' 2.3 deg swing fits in 0.1.
   double max_chord_rotation = 0.1;
-  /// Adaptive alternative to delta (issue 4): > 0 starts a new subdomain when the linearisation
+  /// Adaptive alternative to delta: > 0 starts a new subdomain when the linearisation
   /// residual |Q(e) - Q_m - K_m (e - e_m)| exceeds this force [N] at any node (checked every
   /// `residual_check_steps` steps); delta then only bounds the displacement as a backstop.
   double residual_tolerance = 0.0;

@@ -1,4 +1,4 @@
-// Lowest modes of K phi = w^2 M phi (SPEC 1.2) by ARPACK's symmetric Lanczos (dsaupd/dseupd)
+// Lowest modes of K phi = w^2 M phi (docs/model.md) by ARPACK's symmetric Lanczos (dsaupd/dseupd)
 // in shift-invert mode 3: OP = (K - sigma M)^-1 M, B = M, with (K - sigma M) factorised once by
 // CHOLMOD (supernodal LL^T through Eigen's CholmodSupport). K symmetric positive semi-definite,
 // M symmetric positive definite. Modes are returned mass-normalised (phi^T M phi = I), sorted by

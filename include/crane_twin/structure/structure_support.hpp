@@ -1,4 +1,4 @@
-// The flexible T8036 structure as the rope's support (SPEC 1.2, 1.3, 1.5).
+// The flexible T8036 structure as the rope's support (docs/model.md).
 //
 // The generated geometry is taken as the structure's shape under its own weight (the jib and
 // mast are fabricated with a camber that offsets the dead-load deflection, as built cranes
@@ -11,12 +11,12 @@
 // with Rayleigh damping alpha, beta matched to the modal damping ratio zeta at the first and
 // the `structure.modes`-th natural frequencies (between them the damping ratio dips below zeta,
 // above them it grows: the modes the modal model drops are damped out).
-// The trolley point interpolates the rail nodes at the trolley radius s (weights B, SPEC 1.3):
+// The trolley point interpolates the rail nodes at the trolley radius s (weights B, docs/model.md):
 //   r_p = R(theta) (X_p(s) + B T z),  R(theta) the slewing rotation about z.
 // The trolley's own mass is not part of the structure: it rides on the rope's top node, which
 // coincides with the trolley point through the constraint.
 //
-// Inertial loads of slewing (`slewing.inertial_loads: true`, SPEC 1.4): in the slewing frame,
+// Inertial loads of slewing (`slewing.inertial_loads: true`, docs/model.md): in the slewing frame,
 // which turns with theta(t) about the tower axis z, every rotating node X (a node of the
 // slewing unit, jib, counter-jib or cab) accelerates with the frame by
 //   a(X) = theta'' e_z x X - theta'^2 (X_x, X_y, 0)        (Euler + centripetal),

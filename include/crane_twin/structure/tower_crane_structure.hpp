@@ -1,4 +1,4 @@
-// Finite element model of a flat-top tower crane's steel structure (SPEC 1.2).
+// Finite element model of a flat-top tower crane's steel structure (docs/model.md).
 //
 // Generated from a CraneDescription in the slewing frame at slewing angle 0 (x along the jib,
 // z up, origin at the centre of the mast base):
