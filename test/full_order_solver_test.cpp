@@ -176,9 +176,15 @@ TEST(AnchoredRope, TracksProjectChronoTipOverFirstTwoSeconds) {
       ++r;
     }
   }
+  std::printf("Chrono, first 2 s: %zu common times, max tip difference x %.3g m, z %.3g m\n", r - 1,
+              worstX, worstZ);
   EXPECT_GT(r, 40u);
-  EXPECT_LT(worstX, 0.01);  // docs/accuracy-vs-time.md: within a centimetre or two
+  EXPECT_LT(worstX, 0.01);  // budget: within a centimetre or two of an independent code
   EXPECT_LT(worstZ, 0.02);
+  // Sentinels: measured x 3.15e-4 m, z 4.15e-3 m (build/core/full_order_solver_test
+  // --gtest_filter='*Chrono*'); z carries the undamped axial bounce's phase.
+  EXPECT_LT(worstX, 1e-3);
+  EXPECT_LT(worstZ, 1e-2);
 }
 
 TEST(AnchoredRope, SwingPeriodFromIntegrationMatchesRopeMode) {

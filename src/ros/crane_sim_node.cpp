@@ -13,7 +13,7 @@
 
 #include "crane_twin/io/config_reader.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
-#include "crane_twin/solvers/full_order_solver.hpp"
+#include "crane_twin/integrators/numerical_failure.hpp"
 #include "ros_messages.hpp"
 
 namespace crane_twin {

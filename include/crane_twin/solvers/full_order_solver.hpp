@@ -4,11 +4,10 @@
 // Index-3 DAE:  M q'' + Q(q) - F_g - F_ext + C_q^T lambda = 0,
 //               M_z z'' + C_z z' + K_z z - D^T lambda = 0,
 //               C(q, z) = r_0 - r_p(z) = r_0 - (r_p0 + D z) = 0,
-// integrated with generalized-alpha (Arnold & Bruls, Multibody Syst. Dyn. 18, 2007, Alg. 1):
-//   alpha_m = (2 rho - 1)/(rho + 1), alpha_f = rho/(rho + 1), gamma = 1/2 + alpha_f - alpha_m,
-//   beta = (gamma + 1/2)^2 / 4;  Newmark (average acceleration) is alpha_m = alpha_f = 0.
-// Newton on (Delta q, Delta z, Delta mu) with mu = beta h^2 lambda and the equations scaled by
-// beta h^2 (Bottasso, Bauchau & Cardona 2008), so the iteration matrix
+// integrated with generalized-alpha (integrators/generalized_alpha.hpp). The Newton iteration
+// of a step (integrators/newton_step.hpp, shared with the pendulum solver) works on
+// (Delta q, Delta z, Delta mu) with mu = beta h^2 lambda and the equations scaled by beta h^2
+// (Bottasso, Bauchau & Cardona 2008), so the iteration matrix
 //   [ a M + beta h^2 K_t    0      C_q^T ]      a = (1-alpha_m)/(1-alpha_f)
 //   [ 0                     A_z    -D^T  ]      A_z = a M_z + gamma h C_z + beta h^2 K_z
 //   [ C_q                   -D     0     ]
@@ -19,8 +18,10 @@
 // multiplier rows ordered last, a sparse LDL^T in natural order (Eigen's SimplicialLDLT) meets
 // the zero diagonal only after the rope block (the pivot is then the negative Schur complement
 // -C_q A11^-1 C_q^T) and fills in just those three rows. The pattern is analysed once; the
-// values are written in place every iteration and refactorised. Converged when
-// max|Delta q| < position_tolerance (default 1e-10 m) and |C| < constraint_tolerance (1e-12 m).
+// values are written in place every iteration and refactorised: this solver supplies that
+// linear solve (RopeIncrement). Converged when max|Delta q| < position_tolerance (default
+// 1e-10 m) and |C| < constraint_tolerance (1e-12 m). Failed steps are halved
+// (integrators/step_halving.hpp).
 #pragma once
 
 #include <Eigen/Sparse>

@@ -1,6 +1,6 @@
 // Dynamics and statics of the pendulum rope (PendulumRope) held by its support: the same
-// index-3 DAE, generalized-alpha scheme, scaling and support elimination as FullOrderSolver
-// (see there), with the rope block a dense 6 x 6:
+// index-3 DAE, generalized-alpha scheme, scaling, support elimination and Newton loop
+// (integrators/newton_step.hpp) as FullOrderSolver, with the rope block a dense 6 x 6:
 //   M q'' + Q(q) + Q_d(q, q') - F_g + C_q^T lambda = 0,   C_q = [I 0],
 //   M_z z'' + C_z z' + K_z z - D^T lambda = 0,
 //   C = r_0 - r_p(z) = 0.
