@@ -195,7 +195,10 @@ TEST(HardCases, ReducedHoistingTo3mAndBackFollowsFullOrder) {
   std::printf("60 -> 3 -> 60 m, reduced vs full: payload error %.3g m, %ld fast-hoist hand-overs, "
               "%d slack episodes\n", err, red.fastHoistEpisodes(), red.slackEpisodes());
   EXPECT_NEAR(red.crane().ropeLength(), 60.0, 1e-9);
-  EXPECT_LT(err, 0.3);
+  EXPECT_LT(err, 0.3);  // budget
+  // Sentinel: measured 0.0104 m with 2 hand-overs (build/core/hard_cases_test
+  // --gtest_filter='*ReducedHoisting*').
+  EXPECT_LT(err, 0.04);
   EXPECT_GT(red.fastHoistEpisodes(), 0);
 }
 

@@ -257,7 +257,9 @@ TEST(PendulumRope, MatchesTheAncfRopeOnAPaperScene) {
   }
   std::printf("pendulum vs ANCF: payload error %.3g m (payload moved %.3g m)\n", err, swing);
   EXPECT_GT(swing, 1.0);
-  EXPECT_LT(err, 0.01);
+  EXPECT_LT(err, 0.01);  // budget: the 1 cm the ladder's rungs are held to
+  // Sentinel: measured 1.95e-4 m (build/core/pendulum_rope_test, "pendulum vs ANCF").
+  EXPECT_LT(err, 6e-4);
 }
 
 TEST(PendulumRope, SnapshotDrawsTheChord) {
