@@ -219,7 +219,7 @@ TEST(CraneDrives, SwingPeriodAfterHoistingMatchesTheNewLength) {
 
 
 TEST(CraneDrives, ReducedTracksFullOnTheDriveScenes) {
-  // Issue 5: reduced against full on every drive scene, payload error at most 0.3 m. Slewing
+  // Reduced against full on every drive scene, payload error at most 0.3 m (budget). Slewing
   // and trolley travel on a coarser mesh and step than the shipped scenes, 40 s, to keep the
   // test short; the hoisting scenes over their whole schedule at their own mesh and step (60
   // elements, 5 ms, 100 structure modes): on 20 elements and 10 ms the operator cycle's large swing cuts a subdomain
