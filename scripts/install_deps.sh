@@ -1,11 +1,15 @@
 #!/usr/bin/env bash
 # Install what crane_twin needs from Debian 12's own packages (run as root). Installs only the
 # packages that are missing, so a second run costs a few dpkg queries.
+# Usage: scripts/install_deps.sh [--core]   (--core: only what the ROS-free core, crane_sim, the
+# unit tests and the benchmarks need: no ROS, no rviz)
 set -euo pipefail
-PKGS=(
+CORE_PKGS=(
   build-essential cmake pkg-config
   libeigen3-dev libsuitesparse-dev libarpack2-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev libboost-dev
+)
+ROS_PKGS=(
   catkin ros-core-dev ros-message-generation ros-std-msgs ros-sensor-msgs
   ros-geometry-msgs ros-visualization-msgs libtf2-ros-dev librostest-dev python3-rostest
   ros-std-srvs ros-diagnostic-msgs ros-rosgraph-msgs ros-tf2-msgs librosbag-dev python3-rosbag
@@ -14,6 +18,11 @@ PKGS=(
   xvfb x11-utils imagemagick
   python3-matplotlib
 )
+case "${1:-}" in
+  --core) PKGS=("${CORE_PKGS[@]}") ;;
+  "") PKGS=("${CORE_PKGS[@]}" "${ROS_PKGS[@]}") ;;
+  *) echo "install_deps: unknown option '$1' (usage: install_deps.sh [--core])" >&2; exit 2 ;;
+esac
 missing=()
 for p in "${PKGS[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

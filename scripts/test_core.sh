@@ -4,7 +4,7 @@
 # non-zero when any test fails (or is skipped); the last lines are ctest's own summary.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-bash "$ROOT/scripts/install_deps.sh"
+bash "$ROOT/scripts/install_deps.sh" --core
 export PYENV_VERSION=system
 export PATH="/usr/bin:$PATH"
 cmake -S "$ROOT" -B "$ROOT/build/core" -DCRANE_TWIN_ROS=OFF -DCMAKE_BUILD_TYPE=Release
