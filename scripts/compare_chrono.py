@@ -3,7 +3,8 @@
 
 Usage: scripts/compare_chrono.py SERIES.csv [CHRONO.csv]
 SERIES.csv from `crane_sim run config/scenes/rope_pendulum_chrono.yaml --out SERIES.csv`;
-CHRONO.csv defaults to test/data/chrono_rope_pendulum/caseA_dt1e-3.csv (its README says how it was made).
+CHRONO.csv defaults to test/data/chrono_rope_pendulum/caseA_dt1e-3.csv (its README says how it
+was made).
 Prints the number of common output times and the max |tip x| and |tip z| differences [m].
 """
 import csv

@@ -4,8 +4,9 @@
 # for 20 s of simulated time at real time, driven by scripts/operator_profile.py (trolley in,
 # then slewing, then the command timeout), with rviz when a display exists. The run is recorded
 # (build/demo/demo.bag); the applied commands are then replayed by crane_sim at full order and
-# compared with the node's reduced run (the error metrics of docs/accuracy-vs-time.md). Writes build/demo/summary.txt and
-# build/demo/histories.png (payload, cab and jib-tip histories of both runs).
+# compared with the node's reduced run (the error metrics of docs/accuracy-vs-time.md). Writes
+# build/demo/summary.txt and build/demo/histories.png (payload, cab and jib-tip histories of both
+# runs).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 SCENE="${1:-$ROOT/config/scenes/t8036_live.yaml}"
@@ -45,7 +46,8 @@ for _ in $(seq 50); do [ -f "$OUT/demo.bag" ] && break; sleep 0.2; done
   echo "#   crane_sim run $SCENE --set duration=$DURATION --set rope.model=full --set output_interval=0.001 --set commands=<commands.yaml>"
   "$SIM" run "$SCENE" --set duration="$DURATION" --set rope.model=full --set output_interval=0.001 \
     --set "commands=$(cat "$OUT/commands.yaml")" --out "$OUT/cli_full.csv" --quiet
-  echo "# crane_sim compare node_reduced.csv cli_full.csv (the error metrics of docs/accuracy-vs-time.md at the node's output times)"
+  echo "# crane_sim compare node_reduced.csv cli_full.csv (error metrics of" \
+    "docs/accuracy-vs-time.md at the node's output times)"
   "$SIM" compare "$OUT/node_reduced.csv" "$OUT/cli_full.csv"
   echo "# last state"
   tail -1 "$OUT/node_reduced.csv" | awk -F, '{printf "t=%s payload=(%.3f, %.3f, %.3f) slew_angle=%.4f trolley_radius=%.3f tension=%.0f N\n", $1, $2, $3, $4, $19, $20, $17}'

@@ -17,9 +17,10 @@ if [ -n "${missing:-}" ]; then
 fi
 clang++ -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
   -DCRANE_TWIN_SOURCE_DIR="\"$ROOT\"" -I"$ROOT/include" -I/usr/include/eigen3 \
-  "$ROOT/test/fuzz/scene_loader_fuzz.cpp" "$ROOT/src/io/scene.cpp" "$ROOT/src/io/config_reader.cpp" \
-  "$ROOT/src/io/crane_description.cpp" "$ROOT/src/elements/timoshenko_beam_element.cpp" \
-  "$ROOT/src/elements/ancf_cable_element.cpp" "$ROOT/src/elements/gauss_legendre.cpp" -lyaml-cpp -o "$OUT/scene_loader_fuzz"
+  "$ROOT/test/fuzz/scene_loader_fuzz.cpp" "$ROOT/src/io/scene.cpp" \
+  "$ROOT/src/io/config_reader.cpp" "$ROOT/src/io/crane_description.cpp" \
+  "$ROOT/src/elements/timoshenko_beam_element.cpp" "$ROOT/src/elements/gauss_legendre.cpp" \
+  -lyaml-cpp -o "$OUT/scene_loader_fuzz"
 cp "$ROOT"/config/scenes/*.yaml "$OUT/corpus/"
 cd "$OUT"
 ./scene_loader_fuzz -max_total_time="$SECONDS_TO_RUN" -timeout=10 -rss_limit_mb=4096 \

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Run every hard-case scene of docs/stability.md at full length (and the reduced model where it applies)
-# and write build/hard_cases/<case>.csv, .log; then scripts/stability_report.py prints the
+# Run every hard-case scene of docs/stability.md at full length (and the reduced model where it
+# applies) and write build/hard_cases/<case>.csv, .log; then scripts/stability_report.py prints the
 # table of docs/stability.md. About 10 minutes on the 2-core machine. Needs a build.
 set -uo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Regenerate docs/data/sweep_<scene>.csv for the four paper scenes (docs/accuracy-vs-time.md) and the
-# chart docs/accuracy_vs_time.png. About 10 minutes on the 2-core machine; needs scripts/build.sh.
+# Regenerate docs/data/sweep_<scene>.csv for the four paper scenes (docs/accuracy-vs-time.md) and
+# the chart docs/accuracy_vs_time.png. About 10 minutes on the 2-core machine; needs
+# scripts/build.sh.
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 SIM="$ROOT/build/ws/devel/lib/crane_twin/crane_sim"

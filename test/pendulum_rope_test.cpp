@@ -300,3 +300,14 @@ TEST(ResampleRope, InterpolatesAlongTheMaterialCoordinate) {
   EXPECT_NEAR(m.rope_rms_max, expected, 1e-12);
   EXPECT_THROW(resampleRope({{0, 0, 0}}, 5), InputError);
 }
+
+TEST(PendulumCrane, TheAncfSimulationRefusesAPendulumSceneByKey) {
+  // makeSimulation picks PendulumCraneSimulation; CraneSimulation itself names the key it cannot
+  // run, before it builds anything.
+  try {
+    CraneSimulation sim(anchored({}));
+    FAIL() << "a pendulum scene was accepted by the ANCF simulation";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("'rope.model'"), std::string::npos) << e.what();
+  }
+}

@@ -1,5 +1,5 @@
-// Scene loader validation (docs/scenes.md): each malformed input class is refused with a message that
-// names the file and the key.
+// Scene loader validation (docs/scenes.md): each malformed input class is refused with a message
+// that names the file and the key.
 #include <gtest/gtest.h>
 
 #include <fstream>

@@ -284,14 +284,16 @@ int main(int argc, char** argv) {
   CLI::App* stat = app.add_subcommand("static", "print the static equilibrium as key,value");
   addSceneArgs(stat, staticArgs);
   std::string cmpA, cmpB, cmpNA, cmpNB;
-  CLI::App* cmp = app.add_subcommand("compare", "docs/accuracy-vs-time.md error metrics of run A against run B");
+  CLI::App* cmp = app.add_subcommand(
+      "compare", "error metrics of run A against run B (docs/accuracy-vs-time.md)");
   cmp->add_option("a", cmpA, "time-series CSV of run A")->required();
   cmp->add_option("b", cmpB, "time-series CSV of run B (the reference)")->required();
   cmp->add_option("--nodes-a", cmpNA, "nodes CSV of run A");
   cmp->add_option("--nodes-b", cmpNB, "nodes CSV of run B");
   SceneArgs sweepArgs;
   SweepArgs sweepOpts;
-  CLI::App* sweep = app.add_subcommand("sweep", "accuracy against wall time, full and reduced (docs/accuracy-vs-time.md)");
+  CLI::App* sweep = app.add_subcommand(
+      "sweep", "accuracy against wall time, full and reduced (docs/accuracy-vs-time.md)");
   addSceneArgs(sweep, sweepArgs);
   sweep->add_option("--out", sweepOpts.out, "CSV of the results");
   sweep->add_flag("--quick", sweepOpts.quick, "a few settings only");

@@ -4,6 +4,16 @@
 
 namespace crane_twin {
 
+Eigen::Vector3d condenseSupport(const RopeSupport& support, const Eigen::Vector3d& rc,
+                                const Eigen::VectorXd& rz, Eigen::VectorXd& Azr) {
+  Eigen::Vector3d row = rc;
+  if (support.size() > 0) {
+    Azr = support.solve(rz);
+    row += support.pointMotion(Azr);
+  }
+  return row;
+}
+
 double correctSupport(const GeneralizedAlpha& ga, const RopeSupport& support, double h,
                       const Eigen::VectorXd& Azr, const Eigen::Vector3d& dmu, CoupledState& s) {
   if (support.size() == 0) return 0.0;
@@ -56,14 +66,14 @@ bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSe
   const std::string at = "t = " + std::to_string(s.t + h) + " s";
   Eigen::VectorXd Azr, dq;
   Eigen::Vector3d dmu;
+  Eigen::VectorXd rz;
   for (int it = 0; it < newton.max_iterations; ++it) {
-    // Condensed constraint row: r_c + D A_z^-1 r_z.
-    Eigen::Vector3d rc = -(s.q.head<3>() - support.point(s.z));
     if (m > 0) {
-      Azr = support.solve(-bh2 * (support.internalForce(s.z, s.zd, s.zdd) -
-                                  support.pointForceToCoordinates(s.lambda)));
-      rc += support.pointMotion(Azr);
+      rz = -bh2 * (support.internalForce(s.z, s.zd, s.zdd) -
+                   support.pointForceToCoordinates(s.lambda));
     }
+    const Eigen::Vector3d rc =
+        condenseSupport(support, -(s.q.head<3>() - support.point(s.z)), rz, Azr);
     if (!increment(s, w, rc, dq, dmu, why)) {
       why = at + ": " + why;
       s = start;

@@ -8,14 +8,22 @@
 
 namespace crane_twin {
 
-CraneSimulation::CraneSimulation(const CraneModel& m) : SupportedRopeSimulation(m) {
+namespace {
+// The model, refused before the support (and its structural modes) is built where it asks for
+// a rope this simulation cannot carry.
+const CraneModel& ancfRopeModel(const CraneModel& m) {
+  if (m.scene.rope.model == "pendulum") {
+    throw InputError(m.scene.file + ": key 'rope.model': the ANCF rope cannot run a pendulum "
+                     "scene (makeSimulation builds PendulumCraneSimulation for it)");
+  }
+  return m;
+}
+}  // namespace
+
+CraneSimulation::CraneSimulation(const CraneModel& m) : SupportedRopeSimulation(ancfRopeModel(m)) {
   // Everything below refers to the own copy model_ (the support keeps references into it).
   const CraneModel& model = model_;
   const Scene& sc = model.scene;
-  if (sc.rope.model == "pendulum") {
-    throw InputError(sc.file + ": key 'rope.model': the ANCF rope cannot run a pendulum scene "
-                     "(makeSimulation builds PendulumCraneSimulation for it)");
-  }
   rope_ = std::make_unique<AncfRope>(sc.rope.elements, sc.rope.length,
                                      model.rope.mass_per_length, model.rope.axial_stiffness,
                                      model.rope.bending_stiffness, model.end_mass,
@@ -26,7 +34,7 @@ CraneSimulation::CraneSimulation(const CraneModel& m) : SupportedRopeSimulation(
 }
 
 CoupledState CraneSimulation::swingEquilibrium(double swing_rad, double az_rad,
-                                  Eigen::Vector3d* holding_force) {
+                                               Eigen::Vector3d* holding_force) {
   return solver_->solveSwingEquilibrium(swing_rad, az_rad, holding_force);
 }
 

@@ -17,7 +17,7 @@ PendulumCraneSimulation::PendulumCraneSimulation(const CraneModel& m)
 }
 
 CoupledState PendulumCraneSimulation::swingEquilibrium(double swing_rad, double az_rad,
-                                          Eigen::Vector3d* holding_force) {
+                                                       Eigen::Vector3d* holding_force) {
   return solver_->solveSwingEquilibrium(swing_rad, az_rad, holding_force);
 }
 

@@ -102,11 +102,7 @@ Eigen::VectorXd FullOrderSolver::condensedRhs(const Eigen::VectorXd& rq, const E
   const int n = rope_.dofs();
   Eigen::VectorXd rhs(n + 3);
   rhs.head(n) = rq;
-  rhs.tail<3>() = rc;
-  if (support_.size() > 0) {
-    Azinv_rz = support_.solve(rz);
-    rhs.tail<3>() += support_.pointMotion(Azinv_rz);
-  }
+  rhs.tail<3>() = condenseSupport(support_, rc, rz, Azinv_rz);
   return rhs;
 }
 
@@ -261,7 +257,7 @@ double mechanicalEnergy(const AncfRope& rope, const RopeSupport& support, const 
 }
 
 double ropeTopTension(const AncfRope& rope, const CoupledState& s) {
-  return (s.lambda + rope.topMass() * (s.qdd.head<3>() - rope.gravity())).norm();
+  return ropeTopTension(s.lambda, rope.topMass(), s.qdd.head<3>(), rope.gravity());
 }
 
 double FullOrderSolver::energy(const CoupledState& s) const {

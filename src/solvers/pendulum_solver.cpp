@@ -61,13 +61,11 @@ void PendulumSolver::initializeAccelerations(CoupledState& s) {
   A.topLeftCorner<6, 6>() = rope_.massMatrix();
   A.block<3, 3>(0, 6) = A.block<3, 3>(6, 0) = Eigen::Matrix3d::Identity();
   A.bottomRightCorner<3, 3>() = -G;
-  Vector9 rhs = Vector9::Zero();
+  Vector9 rhs;
   rhs.head<6>() = rope_.gravityForce() - Q - Qd;
-  Eigen::VectorXd Azr;
-  if (m > 0) {
-    Azr = support_.solve(-support_.internalForce(s.z, s.zd, s.zdd));
-    rhs.tail<3>() += support_.pointMotion(Azr);
-  }
+  Eigen::VectorXd Azr, rz;
+  if (m > 0) rz = -support_.internalForce(s.z, s.zd, s.zdd);
+  rhs.tail<3>() = condenseSupport(support_, Eigen::Vector3d::Zero(), rz, Azr);
   const Vector9 x = A.partialPivLu().solve(rhs);
   storeConsistentAccelerations(support_, x.head<6>(), x.tail<3>(), Azr, s);
 }
@@ -110,7 +108,7 @@ double PendulumSolver::energy(const CoupledState& s) const {
 }
 
 double PendulumSolver::topTension(const CoupledState& s) const {
-  return (s.lambda + rope_.topMass() * (s.qdd.head<3>() - rope_.gravity())).norm();
+  return ropeTopTension(s.lambda, rope_.topMass(), s.qdd.head<3>(), rope_.gravity());
 }
 
 double PendulumSolver::constraintError(const CoupledState& s) const {

@@ -546,7 +546,7 @@ double ReducedOrderSolver::constraintError() const {
 }
 
 double ReducedOrderSolver::topTension() const {
-  return (s_.lambda + rope_.topMass() * (s_.ydd.tail<3>() - rope_.gravity())).norm();
+  return ropeTopTension(s_.lambda, rope_.topMass(), s_.ydd.tail<3>(), rope_.gravity());
 }
 
 }  // namespace crane_twin

@@ -1,6 +1,7 @@
-// What accuracy costs in time (docs/accuracy-vs-time.md): run a converged full-order reference once,
-// then the full model over time steps and the reduced model over mode count, delta, structure
-// modes and time step, each measured against the reference with the the error metrics of docs/accuracy-vs-time.md.
+// What accuracy costs in time (docs/accuracy-vs-time.md): run a converged full-order reference
+// once, then the full model over time steps and the reduced model over mode count, delta, structure
+// modes and time step, each measured against the reference with the error metrics of
+// docs/accuracy-vs-time.md.
 #pragma once
 
 #include <functional>
@@ -38,14 +39,14 @@ struct SweepResult {
 Trajectory recordRun(const CraneModel& model, double interval, double* wall_s = nullptr,
                      int* subdomains = nullptr, double* mode_updates_s = nullptr);
 
-/// The grid of docs/accuracy-vs-time.md for a scene: full at 1, 2, 5, 10, 20, 50, 100 ms; reduced at 6, 10, 20 modes x
-/// delta 0.05, 0.2, 0.5 m x 1, 5, 10 ms, plus the paper's point (mode_fraction 0.5, the
-/// scene's delta and step) and 20 structure modes at one reduced setting; and the fidelity
-/// ladder (docs/scenes.md): the pendulum rope at 1, 10 and 50 ms with the scene's structure,
-/// at 10 ms with 20 structure modes, and the rigid structure under the pendulum (1 and 10 ms),
-/// the full rope (10 ms) and the reduced rope (10 modes, 0.2 m, 5 ms). The reduced grid runs in
-/// the scene's subdomain frame; the paper's fixed frame is added at 10 modes x delta x 5 ms and
-/// at the paper's point when the scene uses the chord's frame, and 10 modes at 20 and 50 ms.
+/// The grid of docs/accuracy-vs-time.md for a scene: full at 1, 2, 5, 10, 20, 50, 100 ms; reduced
+/// at 6, 10, 20 modes x delta 0.05, 0.2, 0.5 m x 1, 5, 10 ms, plus the paper's point (mode_fraction
+/// 0.5, the scene's delta and step) and 20 structure modes at one reduced setting; and the fidelity
+/// ladder (docs/scenes.md): the pendulum rope at 1, 10 and 50 ms with the scene's structure, at
+/// 10 ms with 20 structure modes, and the rigid structure under the pendulum (1 and 10 ms), the full
+/// rope (10 ms) and the reduced rope (10 modes, 0.2 m, 5 ms). The reduced grid runs in the scene's
+/// subdomain frame; the paper's fixed frame is added at 10 modes x delta x 5 ms and at the paper's
+/// point when the scene uses the chord's frame, and 10 modes at 20 and 50 ms.
 /// `quick` keeps a few.
 std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick);
 

@@ -1,6 +1,7 @@
-// Error metrics of docs/accuracy-vs-time.md between two runs of the same scene (reduced against full, or any
-// setting against a reference): payload error, rope RMS error over all nodes (paper eq. 18 with
-// its square restored), cab and jib-tip errors, each the max over the common output times.
+// Error metrics of docs/accuracy-vs-time.md between two runs of the same scene (reduced against
+// full, or any setting against a reference): payload error, rope RMS error over all nodes (paper
+// eq. 18 with its square restored), cab and jib-tip errors, each the max over the common output
+// times.
 #pragma once
 
 #include <Eigen/Dense>

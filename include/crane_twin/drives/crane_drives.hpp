@@ -1,9 +1,8 @@
-// The three crane drives of a scene (docs/model.md): slewing angle theta [rad], trolley radius s [m]
-// and hanging rope length L [m], each a DriveAxis following the active rate command: the
-// scene's `commands:` schedule, or an operator command set at run time (the node-facing API),
-// which overrides the schedule from then on. Whichever rope model a run integrates (pendulum,
-// full, reduced), it moves its support with these drives, so every model of a scene drives the
-// same way.
+// The three crane drives of a scene (docs/model.md): slewing angle theta [rad], trolley radius s
+// [m] and hanging rope length L [m], each a DriveAxis following the active rate command: the
+// scene's `commands:` schedule, or an operator command set at run time (the node-facing API), which
+// overrides the schedule from then on. Whichever rope model a run integrates (pendulum, full,
+// reduced), it moves its support with these drives, so every model of a scene drives the same way.
 #pragma once
 
 #include <optional>

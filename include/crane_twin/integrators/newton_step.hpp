@@ -52,6 +52,12 @@ using RopeIncrement = std::function<bool(const CoupledState& s, const NewtonWeig
 bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSettings& newton,
                 double h, const RopeIncrement& increment, CoupledState& s, std::string& why);
 
+/// The support's rows eliminated from a linear solve (its Schur complement): returns the
+/// condensed constraint row rc + D A_z^-1 r_z and A_z^-1 r_z in Azr, for the weights last set
+/// on the support; rc itself (and Azr untouched) for a support without coordinates.
+Eigen::Vector3d condenseSupport(const RopeSupport& support, const Eigen::Vector3d& rc,
+                                const Eigen::VectorXd& rz, Eigen::VectorXd& Azr);
+
 /// The support part of a Newton correction: dz = A_z^-1 (r_z + D^T dmu) from the condensed
 /// solve (Azr = A_z^-1 r_z), applied to (z, z', z''). Returns max |D dz|, the change at the
 /// support point [m]. No-op returning 0 for a support without coordinates.

@@ -1,5 +1,5 @@
-// Scene files (docs/scenes.md): what to simulate and which effects to include. Every key is validated
-// on load; a wrong type, a value out of range, an unknown key or a missing file raises an
+// Scene files (docs/scenes.md): what to simulate and which effects to include. Every key is
+// validated on load; a wrong type, a value out of range, an unknown key or a missing file raises an
 // InputError naming the file and the dotted key.
 #pragma once
 

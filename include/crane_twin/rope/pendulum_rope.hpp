@@ -1,6 +1,6 @@
-// The cheapest rung of the rope ladder (docs/scenes.md, `rope.model: pendulum`): the hanging rope as
-// one straight elastic bar from its top point r_0 to its end point r_1 (hook block and
-// payload), with the rope's mass and no ANCF.
+// The cheapest rung of the rope ladder (docs/scenes.md, `rope.model: pendulum`): the hanging rope
+// as one straight elastic bar from its top point r_0 to its end point r_1 (hook block and payload),
+// with the rope's mass and no ANCF.
 //
 // Coordinates q = [r_0; r_1] [m, world frame] (6; the top point is held at the trolley by the
 // same constraint as the ANCF rope's top node).

@@ -1,8 +1,8 @@
 // Lowest modes of the rope linearised at a state e_m with its top node's position held
-// (docs/model.md): K_ii(e_m) phi = w^2 M_ii phi over the rope coordinates without the top node's three
-// position DOFs (the top slope stays free), mass-normalised. With the three rigid translations
-// of the whole rope they span the reduced rope's motion (ReducedOrderSolver): the top moves by
-// the translations, which cost no elastic force (the energy is translation-invariant).
+// (docs/model.md): K_ii(e_m) phi = w^2 M_ii phi over the rope coordinates without the top node's
+// three position DOFs (the top slope stays free), mass-normalised. With the three rigid
+// translations of the whole rope they span the reduced rope's motion (ReducedOrderSolver): the top
+// moves by the translations, which cost no elastic force (the energy is translation-invariant).
 //
 // Cold solve: ARPACK shift-invert (a few modes) or Eigen's dense generalised solver (a large
 // fraction of the spectrum, where Lanczos needs nearly the whole space anyway).

@@ -63,6 +63,15 @@ class RopeSupport {
   }
 };
 
+/// Rope top tension [N]: the force between the rope's top node and the support point less the
+/// weight and inertia of the mass m_top that moves with that point (the trolley),
+/// |lambda + m_top (r_0'' - g)|, with r_0'' the top node's acceleration [m/s^2].
+inline double ropeTopTension(const Eigen::Vector3d& lambda, double top_mass,
+                             const Eigen::Vector3d& top_acceleration,
+                             const Eigen::Vector3d& gravity) {
+  return (lambda + top_mass * (top_acceleration - gravity)).norm();
+}
+
 /// A fixed point in the world frame (no coordinates).
 class FixedAnchor : public RopeSupport {
  public:

@@ -1,8 +1,7 @@
-// A scene run at full order (docs/model.md): the ANCF rope, what holds it (a fixed anchor for
-// crane: none, the T8036 structure rigid, modal or in full coordinates), the drives (docs/model.md:
-// slewing, trolley, hoisting), the initial state of docs/scenes.md (equilibrium with a holding force,
-// or stress-free), time stepping, and the docs/cli.md output rows. The ROS-free unit the CLI's
-// `run`, `static` and `modes --part rope` use; the reduced model builds on it.
+// A scene run at full order (docs/model.md): the ANCF rope on its support, the drives and the
+// initial state (SupportedRopeSimulation), time stepping with FullOrderSolver, hoisting by
+// uniform rescaling. The ROS-free unit the CLI's `run`, `static` and `modes --part rope` use;
+// the reduced model builds on it.
 #pragma once
 
 #include <memory>

@@ -1,5 +1,5 @@
-// A scene run with the reduced rope (rope.model: reduced, docs/model.md): the same rope, support and
-// initial equilibrium as the full-order model (CraneSimulation), integrated by
+// A scene run with the reduced rope (rope.model: reduced, docs/model.md): the same rope, support
+// and initial equilibrium as the full-order model (CraneSimulation), integrated by
 // ReducedOrderSolver. Hoisting: every step that changes the rope's length rescales the expanded
 // state as the full model does and starts a new subdomain with a static-correction vector.
 //

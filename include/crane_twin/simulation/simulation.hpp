@@ -61,8 +61,8 @@ class Simulation {
   virtual int ropeNodes() const = 0;
   virtual Eigen::Vector3d ropeNode(int j) const = 0;
   /// Operator command from now on, overriding the scene's schedule (the node-facing API,
-  /// docs/model.md "Drives"). Throws std::invalid_argument for a non-finite value and InputError for what is not
-  /// built; the state is unchanged then.
+  /// docs/model.md "Drives"). Throws std::invalid_argument for a non-finite value and InputError
+  /// for what is not built; the state is unchanged then.
   virtual void setCommand(const CommandEntry& command) = 0;
   /// The state in the rope model's own full coordinates (ANCF q, or the pendulum's two points;
   /// the reduced model expands its own: O(n r)) and the support's coordinates z.

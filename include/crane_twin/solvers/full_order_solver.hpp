@@ -57,7 +57,8 @@ class FullOrderSolver {
                            const Eigen::Vector3d& end_force);
 
   /// Equilibrium whose chord (top node to end node) makes swing_rad with the vertical at
-  /// azimuth az_rad, held by a horizontal force on the end mass (secant on the force). docs/scenes.md.
+  /// azimuth az_rad, held by a horizontal force on the end mass (secant on the force).
+  /// docs/scenes.md.
   CoupledState solveSwingEquilibrium(double swing_rad, double az_rad,
                                   Eigen::Vector3d* holding_force = nullptr);
 
