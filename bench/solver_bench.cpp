@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/simulation/invariant_reduced_simulation.hpp"
 #include "crane_twin/simulation/reduced_crane_simulation.hpp"
 #include "crane_twin/rope/rope_modes.hpp"
 
@@ -89,3 +90,37 @@ static void BM_ReducedStepT8036(benchmark::State& state) {
 }
 BENCHMARK(BM_ReducedStepT8036)->Args({10, 0})->Args({10, 1})->Args({360, 0})->Args({360, 1})
     ->ArgNames({"modes", "corotational"})->Unit(benchmark::kMicrosecond);
+
+// ---- Reduced order on the rotation-invariant basis (the default) --------------------------
+
+static void BM_InvariantReducedForce(benchmark::State& state) {
+  // The reduced elastic force alone (one per Newton iteration), at the 2.3 deg equilibrium.
+  const CraneModel m = buildCraneModel(loadScene(
+      kScenes + "t8036_combination1.yaml",
+      {"rope.model=reduced", "rope.elements=" + std::to_string(state.range(0))}));
+  InvariantReducedSimulation sim(m);
+  sim.initialize();
+  const CoupledState& s = sim.reducedState();
+  for (auto _ : state) {
+    Eigen::VectorXd Q = sim.solver().force(s.q, s.v);
+    benchmark::DoNotOptimize(Q.data());
+  }
+  state.counters["shapes"] = sim.basis().shapes();
+}
+BENCHMARK(BM_InvariantReducedForce)->Arg(60)->Arg(120)->Arg(240)->ArgName("elements")
+    ->Unit(benchmark::kMicrosecond);
+
+static void BM_InvariantReducedStepT8036(benchmark::State& state) {
+  // Steps of a 30 deg swing on the T8036 (100 structure modes): the run's own step, with the
+  // error indicator every InvariantReducedSimulation::kCheckSteps steps; `newton` as above.
+  const CraneModel m = buildCraneModel(loadScene(
+      kScenes + "hard_swing_30deg.yaml",
+      {"rope.model=reduced", "rope.elements=" + std::to_string(state.range(0))}));
+  InvariantReducedSimulation sim(m);
+  sim.initialize();
+  for (auto _ : state) sim.step();
+  state.counters["newton"] = static_cast<double>(sim.solver().newtonIterations()) /
+                             std::max(1L, sim.solver().steps());
+}
+BENCHMARK(BM_InvariantReducedStepT8036)->Arg(60)->Arg(120)->Arg(240)->ArgName("elements")
+    ->Unit(benchmark::kMicrosecond);

@@ -175,11 +175,11 @@ TEST(CraneSimCli, RunWritesSpecColumnsAndSummary) {
             "t,payload_x,payload_y,payload_z,payload_vx,payload_vy,payload_vz,cab_dx,cab_dy,cab_dz,"
             "jib_tip_dx,jib_tip_dy,jib_tip_dz,trolley_x,trolley_y,trolley_z,rope_top_tension,"
             "rope_length,slew_angle,trolley_radius,energy,constraint_error,subdomains,"
-            "tension_ratio,load_chart_ratio,warnings");
+            "tension_ratio,load_chart_ratio,warnings,full_order_steps");
   int rows = 0;
   for (std::string row; std::getline(in, row);) {
     ++rows;
-    EXPECT_EQ(std::count(row.begin(), row.end(), ','), 25) << row;
+    EXPECT_EQ(std::count(row.begin(), row.end(), ','), 26) << row;
     EXPECT_EQ(row.find("nan"), std::string::npos) << row;
   }
   EXPECT_EQ(rows, 3);  // t = 0, 0.05, 0.1 at output_interval 0.05
@@ -204,7 +204,8 @@ TEST(CraneSimCli, StaticPrintsKeys) {
 }
 
 TEST(CraneSimCli, UnbuiltCombinationsAreRefusedClearly) {
-  Result r = run("run " + kRope + " --set rope.model=reduced --set rope.damping=0.01 --quiet");
+  Result r = run("run " + kRope + " --set rope.model=reduced --set rope.reduction=subdomains"
+                 " --set rope.damping=0.01 --quiet");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.out.find("rope.damping"), std::string::npos) << r.out;
   r = run("run " + kRope + " --out /nonexistent/dir/x.csv --quiet");
@@ -263,8 +264,8 @@ TEST(CraneSimCli, T8036StaticReportsStructureDeflection) {
 }
 
 TEST(CraneSimCli, ReducedRunCountsSubdomains) {
-  const Result r = run("run " + kRope + " --set rope.model=reduced --set rope.mode_count=6"
-                       " --set rope.elements=10 --set duration=2 --set initial.mode=equilibrium"
+  const Result r = run("run " + kRope + " --set rope.model=reduced --set rope.reduction=subdomains"
+                       " --set rope.mode_count=6 --set rope.elements=10 --set duration=2 --set initial.mode=equilibrium"
                        " --set rope.subdomain_delta=0.01 --quiet");
   ASSERT_EQ(r.status, 0) << r.out;
   const auto l = lines(r.out);

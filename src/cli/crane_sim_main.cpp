@@ -179,8 +179,10 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
                  sim->halvedSteps());
   }
   const double simS = steps * sc.time_step;
-  std::printf("summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=%d mode_updates_s=%.3g\n",
-              wall, simS, simS / wall, steps, sim->subdomains(), sim->modeUpdateSeconds());
+  std::printf("summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=%d mode_updates_s=%.3g "
+              "hand_overs=%ld full_order_steps=%ld\n",
+              wall, simS, simS / wall, steps, sim->subdomains(), sim->modeUpdateSeconds(),
+              sim->handOvers(), sim->fullOrderSteps());
   return 0;
 }
 

@@ -110,6 +110,40 @@ double ancfElasticEnergy(const AncfCableProperties& p, const Vector12& e) {
   return U;
 }
 
+void ancfCablePoint(double EA, double EI, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                    bool hessian, CablePointDerivatives& d) {
+  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  const double h = a.squaredNorm();
+  const double g = std::sqrt(h);
+  // Axial: phi = EA/2 (g - 1)^2; phi_a = EA (1 - 1/g) a;
+  // phi_aa = EA [(1 - 1/g) I + a a^T / g^3].
+  d.fa = EA * (1.0 - 1.0 / g) * a;
+  if (hessian) d.Paa = EA * ((1.0 - 1.0 / g) * I3 + a * a.transpose() / (h * g));
+  if (EI == 0.0) {
+    d.fb.setZero();
+    if (hessian) d.Pab.setZero(), d.Pbb.setZero();
+    return;
+  }
+  // Bending: phi = EI/2 f h^-3, f = |a x b|^2 = (a.a)(b.b) - (a.b)^2, h = a.a.
+  const double ab = a.dot(b), bb = b.dot(b);
+  const double f = h * bb - ab * ab;
+  const Eigen::Vector3d fa = 2.0 * bb * a - 2.0 * ab * b;
+  const Eigen::Vector3d fb = 2.0 * h * b - 2.0 * ab * a;
+  const Eigen::Vector3d ha = 2.0 * a;
+  const double h3 = 1.0 / (h * h * h), h4 = h3 / h, h5 = h4 / h;
+  const double c = 0.5 * EI;
+  d.fa += c * (fa * h3 - 3.0 * f * h4 * ha);
+  d.fb = c * fb * h3;
+  if (!hessian) return;
+  const Eigen::Matrix3d faa = 2.0 * bb * I3 - 2.0 * b * b.transpose();
+  const Eigen::Matrix3d fbb = 2.0 * h * I3 - 2.0 * a * a.transpose();
+  const Eigen::Matrix3d fab = 4.0 * a * b.transpose() - 2.0 * b * a.transpose() - 2.0 * ab * I3;
+  d.Paa += c * (faa * h3 - 3.0 * h4 * (fa * ha.transpose() + ha * fa.transpose()) +
+                12.0 * f * h5 * ha * ha.transpose() - 6.0 * f * h4 * I3);
+  d.Pab = c * (fab * h3 - 3.0 * h4 * ha * fb.transpose());
+  d.Pbb = c * fbb * h3;
+}
+
 void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12& Q,
                       Matrix12* K) {
   const GaussRule& gr = gaussRule(p.gauss_points);
@@ -117,52 +151,27 @@ void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12&
   Q.setZero();
   if (K) K->setZero();
   const double EA = p.axial_stiffness, EI = p.bending_stiffness, l = p.length;
-  const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
+  CablePointDerivatives d;
   for (int q = 0; q < xg.size(); ++q) {
     const double w = wg(q) * l;
     const Eigen::Vector4d sx = ancfShapeDx(xg(q), l);
     const Eigen::Vector4d sxx = ancfShapeDxx(xg(q), l);
-    const Eigen::Vector3d a = combine(sx, e);   // r_x
-    const Eigen::Vector3d b = combine(sxx, e);  // r_xx
-    const double h = a.squaredNorm();
-    const double g = std::sqrt(h);
-
-    // Axial: phi = EA/2 (g - 1)^2; phi_a = EA (1 - 1/g) a;
-    // phi_aa = EA [(1 - 1/g) I + a a^T / g^3].
-    // The Hessian of the energy density in (a, b) = (r_x, r_xx) is the symmetric 6 x 6
-    // P = [Paa Pab; Pab^T Pbb]; block (i, j) of the tangent gains
+    // Q = int (S_x^T phi_a + S_xx^T phi_b) dx; block (i, j) of the tangent gains
     // w (sx_i sx_j Paa + sx_i sxx_j Pab + sxx_i sx_j Pab^T + sxx_i sxx_j Pbb), computed for
     // j >= i only and mirrored (the profiled hot spot was one 3 x 3 update per term and pair).
-    Eigen::Matrix3d Paa;
-    if (K) Paa = EA * ((1.0 - 1.0 / g) * I3 + a * a.transpose() / (h * g));
+    ancfCablePoint(EA, EI, combine(sx, e), combine(sxx, e), K != nullptr, d);
+    addVec(sx, d.fa, w, Q);
     if (EI == 0.0) {
-      addVec(sx, EA * (1.0 - 1.0 / g) * a, w, Q);
-      if (K) addOuter(sx, sx, Paa, w, *K);
+      if (K) addOuter(sx, sx, d.Paa, w, *K);
       continue;
     }
-    // Bending: phi = EI/2 f h^-3, f = |a x b|^2 = (a.a)(b.b) - (a.b)^2, h = a.a.
-    const double ab = a.dot(b), bb = b.dot(b);
-    const double f = h * bb - ab * ab;
-    const Eigen::Vector3d fa = 2.0 * bb * a - 2.0 * ab * b;
-    const Eigen::Vector3d fb = 2.0 * h * b - 2.0 * ab * a;
-    const Eigen::Vector3d ha = 2.0 * a;
-    const double h3 = 1.0 / (h * h * h), h4 = h3 / h, h5 = h4 / h;
-    const double c = 0.5 * EI;
-    addVec(sx, EA * (1.0 - 1.0 / g) * a + c * (fa * h3 - 3.0 * f * h4 * ha), w, Q);
-    addVec(sxx, c * fb * h3, w, Q);
+    addVec(sxx, d.fb, w, Q);
     if (!K) continue;
-    const Eigen::Matrix3d faa = 2.0 * bb * I3 - 2.0 * b * b.transpose();
-    const Eigen::Matrix3d fbb = 2.0 * h * I3 - 2.0 * a * a.transpose();
-    const Eigen::Matrix3d fab = 4.0 * a * b.transpose() - 2.0 * b * a.transpose() - 2.0 * ab * I3;
-    Paa += c * (faa * h3 - 3.0 * h4 * (fa * ha.transpose() + ha * fa.transpose()) +
-                12.0 * f * h5 * ha * ha.transpose() - 6.0 * f * h4 * I3);
-    const Eigen::Matrix3d Pab = c * (fab * h3 - 3.0 * h4 * ha * fb.transpose());
-    const Eigen::Matrix3d Pbb = c * fbb * h3;
     for (int i = 0; i < 4; ++i)
       for (int j = i; j < 4; ++j)
         K->block<3, 3>(3 * i, 3 * j) +=
-            w * ((sx(i) * sx(j)) * Paa + (sx(i) * sxx(j)) * Pab +
-                 (sxx(i) * sx(j)) * Pab.transpose() + (sxx(i) * sxx(j)) * Pbb);
+            w * ((sx(i) * sx(j)) * d.Paa + (sx(i) * sxx(j)) * d.Pab +
+                 (sxx(i) * sx(j)) * d.Pab.transpose() + (sxx(i) * sxx(j)) * d.Pbb);
   }
   if (K && EI != 0.0) {
     for (int i = 1; i < 4; ++i)

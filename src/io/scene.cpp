@@ -81,6 +81,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     RopeSettings& r = s.rope;
     const RopeSpec def = s.crane ? s.crane->rope : RopeSpec{};
     r.model = n.string("model", "reduced", {"pendulum", "full", "reduced"});
+    r.reduction = n.string("reduction", "invariant", {"invariant", "subdomains"});
     r.elements = n.integer("elements", 120, 1, 100000);
     r.length = n.number("length", std::nullopt, Bounds::positive());
     r.falls = n.integer("falls", def.falls, 1, 12);

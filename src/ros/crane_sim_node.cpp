@@ -331,6 +331,8 @@ void CraneSimNode::publishDiagnostics() {
   num("step_cost_s", last_step_cost_);
   num("steps", static_cast<double>(steps_));
   num("subdomains", sim_->subdomains());
+  num("hand_overs", static_cast<double>(sim_->handOvers()));
+  num("full_order_steps", static_cast<double>(sim_->fullOrderSteps()));
   num("mode_updates_s", sim_->modeUpdateSeconds());
   num("rejected_commands", static_cast<double>(rejected_));
   num("pacing_overruns", static_cast<double>(overruns_));

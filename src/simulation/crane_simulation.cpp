@@ -51,12 +51,19 @@ void CraneSimulation::resetDrives() {
 // elements, the geometry and nodal velocities are kept (slope coordinates rescaled), M and F_g
 // rebuilt so the rope's mass is mu L exactly.
 void CraneSimulation::applyRopeLength(CoupledState& s) {
-  if (!model_.scene.crane) return;
-  const double from = rope_->length(), to = drives_.hoistLength();
-  if (to == from) return;
+  const double from = rope_->length();
+  if (!followHoistLength()) return;
+  const double to = rope_->length();
+  for (Eigen::VectorXd* x : {&s.q, &s.v, &s.qdd, &s.a}) AncfRope::rescaleSlopes(*x, from, to);
+}
+
+bool CraneSimulation::followHoistLength() {
+  if (!model_.scene.crane) return false;
+  const double to = drives_.hoistLength();
+  if (to == rope_->length()) return false;
   rope_->setLength(to);
   solver_->refreshMass();
-  for (Eigen::VectorXd* x : {&s.q, &s.v, &s.qdd, &s.a}) AncfRope::rescaleSlopes(*x, from, to);
+  return true;
 }
 
 CoupledState CraneSimulation::initialState() {

@@ -150,6 +150,7 @@ void ReducedCraneSimulation::step() {
 SeriesValues ReducedCraneSimulation::series() const {
   SeriesValues v = full_.seriesOf(fullState());
   v.subdomains = solver_->statistics().subdomains;
+  v.full_order_steps = full_order_steps_;
   return v;
 }
 

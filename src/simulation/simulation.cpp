@@ -4,6 +4,7 @@
 
 #include "crane_twin/io/config_reader.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/simulation/invariant_reduced_simulation.hpp"
 #include "crane_twin/simulation/pendulum_crane_simulation.hpp"
 #include "crane_twin/simulation/reduced_crane_simulation.hpp"
 
@@ -13,7 +14,7 @@ const char* const kSeriesHeader =
     "t,payload_x,payload_y,payload_z,payload_vx,payload_vy,payload_vz,cab_dx,cab_dy,cab_dz,"
     "jib_tip_dx,jib_tip_dy,jib_tip_dz,trolley_x,trolley_y,trolley_z,rope_top_tension,"
     "rope_length,slew_angle,trolley_radius,energy,constraint_error,subdomains,"
-    "tension_ratio,load_chart_ratio,warnings";
+    "tension_ratio,load_chart_ratio,warnings,full_order_steps";
 
 const char* warningName(int bit) {
   switch (bit) {
@@ -36,7 +37,7 @@ void writeSeriesRow(std::ostream& out, const SeriesValues& v) {
   put(v.trolley);
   out << ',' << v.rope_top_tension << ',' << v.rope_length << ',' << v.slew_angle << ','
       << v.trolley_radius << ',' << v.energy << ',' << v.constraint_error << ',' << v.subdomains
-      << ',' << v.tension_ratio << ',' << v.load_chart_ratio << ',' << v.warnings << '\n';
+      << ',' << v.tension_ratio << ',' << v.load_chart_ratio << ',' << v.warnings << ',' << v.full_order_steps << '\n';
 }
 
 void Simulation::writeNodeRows(std::ostream& out) const {
@@ -51,7 +52,10 @@ void Simulation::writeNodeRows(std::ostream& out) const {
 std::unique_ptr<Simulation> makeSimulation(const CraneModel& model) {
   const Scene& sc = model.scene;
   if (sc.rope.model == "full") return std::make_unique<CraneSimulation>(model);
-  if (sc.rope.model == "reduced") return std::make_unique<ReducedCraneSimulation>(model);
+  if (sc.rope.model == "reduced" && sc.rope.reduction == "subdomains") {
+    return std::make_unique<ReducedCraneSimulation>(model);
+  }
+  if (sc.rope.model == "reduced") return std::make_unique<InvariantReducedSimulation>(model);
   if (sc.rope.model == "pendulum") return std::make_unique<PendulumCraneSimulation>(model);
   throw InputError(sc.file + ": key 'rope.model': '" + sc.rope.model + "' is not built yet");
 }

@@ -21,6 +21,7 @@ struct CommandEntry {
 
 struct RopeSettings {
   std::string model = "reduced";  ///< pendulum | full | reduced
+  std::string reduction = "invariant";  ///< reduced: invariant | subdomains
   int elements = 120;
   double length = 60.0;           ///< hanging length at t = 0 [m]
   int falls = 2;

@@ -39,9 +39,18 @@ class CraneSimulation final : public SupportedRopeSimulation {
   void stepAfterDrives();
   /// Bring the rope to the hoist drive's length, rescaling a full-coordinate state with it.
   void applyRopeLength(CoupledState& s);
+  /// The rope (and the solver's mass) to the hoist drive's length, no state touched; true where
+  /// the length changed (the reduced rope keeps its own coordinates through a length change).
+  bool followHoistLength();
 
   /// Continue from a full-coordinate state (the reduced model hands a slack rope over here).
   void setState(const CoupledState& s) { state_ = s; }
+  /// Continue from positions and velocities of a state (q, v, z, z'), with accelerations and
+  /// the generalized-alpha variables recomputed consistently (Arnold & Bruls 2007).
+  void restartFrom(const CoupledState& s) {
+    state_ = s;
+    solver_->initializeAccelerations(state_);
+  }
 
   /// The initial full-order state of the scene (what initialize() starts from).
   CoupledState initialState();

@@ -79,13 +79,14 @@ class ReducedCraneSimulation final : public Simulation {
   /// (|dL| / L per step) runs at full order until the hoist stops (docs/model.md).
   static constexpr double kHoistStepStrain = 0.25;
   /// Steps integrated at full order while the rope was slack, and the hand-overs to it.
-  long fullOrderSteps() const { return full_order_steps_; }
+  long fullOrderSteps() const override { return full_order_steps_; }
+  long handOvers() const override { return slack_episodes_ + fast_hoist_episodes_; }
   int slackEpisodes() const { return slack_episodes_; }
   /// Hand-back trials refused because the new basis dropped too much of the state's energy.
   long refusedHandBacks() const { return refused_hand_backs_; }
   /// Hand-overs to full order because the length changed too fast per step.
   long fastHoistEpisodes() const { return fast_hoist_episodes_; }
-  bool integratingFullOrder() const { return full_order_; }
+  bool integratingFullOrder() const override { return full_order_; }
   double modeUpdateSeconds() const override { return solver_->statistics().mode_update_seconds; }
   const ReducedOrderSolver& solver() const { return *solver_; }
 

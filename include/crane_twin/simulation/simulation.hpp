@@ -29,6 +29,7 @@ struct SeriesValues {
   double tension_ratio = 0.0;     ///< rope top tension / breaking force of all falls
   double load_chart_ratio = 0.0;  ///< payload / allowed load at the current radius (0: no crane)
   int warnings = 0;               ///< bit set of Warning
+  long full_order_steps = 0;      ///< reduced rope: steps integrated at full order so far
 };
 
 /// Bits of SeriesValues::warnings.
@@ -77,15 +78,21 @@ class Simulation {
   /// Subdomains started and wall time in rope mode updates (0 for a full-order run).
   virtual int subdomains() const { return 0; }
   virtual double modeUpdateSeconds() const { return 0.0; }
-  /// Steps taken as halves because Newton failed at the full step (full order only).
+  /// Steps taken as halves because Newton failed at the full step.
   virtual long halvedSteps() const { return 0; }
+  /// Reduced rope: hand-overs to full order so far, the steps integrated at full order, and
+  /// whether the current step runs at full order (0, 0, false for the other models).
+  virtual long handOvers() const { return 0; }
+  virtual long fullOrderSteps() const { return 0; }
+  virtual bool integratingFullOrder() const { return false; }
 
   /// `t,node,x,y,z` rows for every rope node.
   void writeNodeRows(std::ostream& out) const;
 };
 
 /// The simulation the scene's rope.model asks for (CraneSimulation for full,
-/// ReducedCraneSimulation for reduced, PendulumCraneSimulation for pendulum). Throws InputError.
+/// InvariantReducedSimulation for reduced, ReducedCraneSimulation for reduced with
+/// rope.reduction: subdomains, PendulumCraneSimulation for pendulum). Throws InputError.
 std::unique_ptr<Simulation> makeSimulation(const CraneModel& model);
 
 }  // namespace crane_twin

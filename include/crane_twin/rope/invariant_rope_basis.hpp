@@ -1,0 +1,84 @@
+// The rotation-invariant Ritz basis of the reduced rope (docs/model.md, "Reduced rope").
+//
+// The ANCF rope's mass matrix is isotropic, M = M_s (x) I3 (M_s the scalar mass over the 2 (N+1)
+// scalar coordinates of one direction: node positions and slopes), and its elastic energy
+// depends on q only through the dot products of r_x and r_xx: U(R q) = U(q) for every rotation R
+// applied to all positions and slopes. A basis of the form B = Psi (x) I3 (Psi: m scalar shapes
+// over those 2 (N+1) coordinates) spans a space that every rotation maps onto itself, so
+//   q = B y,  y = [a_0; a_1; ...; a_(m-1)],  r(x) = sum_k psi_k(x) a_k   (a_k in R^3)
+// carries any finite rigid rotation and translation of a shape it carries (R q = B (I (x) R) y),
+// with a constant mass matrix M_r = (Psi^T M_s Psi) (x) I3 and no frame, no quadratic velocity
+// terms and no subdomains. The elastic force is evaluated exactly at the expanded state
+// (InvariantRopeForce), so the reduced model is the Galerkin projection of the full-order
+// equations onto the space of B.
+//
+// The shapes, functions of xi = x / L (slopes stored as d/dxi, so r_x = a . psi' / L):
+//   psi_0 = 1 (the translation; a_0 is the top node's position, every other shape is zero there),
+//   psi_1 = xi (a straight chord of any direction and stretch is a_0 + xi a_1, exactly),
+//   the static shapes of the rope hanging along -z under its weight and the end mass: the
+//     transverse response to the distributed weight and the axial stretch under it,
+//   the lowest transverse modes  K_T psi = w^2 M_s psi  and the lowest axial modes
+//     K_A psi = w^2 M_s psi  of that hanging rope with the top position held (ARPACK),
+// where K_T and K_A are the x-x and z-z blocks of the full tangent of the vertical rope at its
+// static tension profile. Shapes after psi_0 are M_s-orthogonalised in this order (a shape the
+// earlier ones already span is dropped) and scaled to a largest node displacement of 1, so a_k
+// is in metres.
+//
+// Hoisting keeps y: with the slopes in d/dxi the full model's uniform rescaling (positions kept,
+// slopes scaled by L_old / L_new, AncfRope::setLength) is exactly q = B(L_new) y, and every
+// matrix is a function of L in closed form (M_s = mu L M_hat + point masses).
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "crane_twin/elements/sparse_assembly.hpp"
+#include "crane_twin/rope/ancf_rope.hpp"
+
+namespace crane_twin {
+
+struct InvariantBasisSettings {
+  int transverse_modes = 6;  ///< lowest transverse modes of the hanging rope
+  int axial_modes = 2;       ///< lowest axial modes
+};
+
+class InvariantRopeBasis {
+ public:
+  /// Shapes of `rope` (its length, masses, EA, EI at the time of the call). Throws
+  /// std::invalid_argument for negative counts, std::runtime_error where the eigen-solve fails.
+  InvariantRopeBasis(const AncfRope& rope, const InvariantBasisSettings& settings);
+
+  int shapes() const { return static_cast<int>(position_.cols()); }
+  int coordinates() const { return 3 * shapes(); }
+  int nodes() const { return static_cast<int>(position_.rows()); }
+  /// psi_k at the nodes (nodes x m) and d psi_k / d xi there.
+  const Eigen::MatrixXd& positionRows() const { return position_; }
+  const Eigen::MatrixXd& slopeRows() const { return slope_; }
+  /// Lowest angular frequencies of the kept modes [rad/s] (transverse, axial) at the basis length.
+  const Eigen::VectorXd& transverseOmega() const { return transverse_omega_; }
+  const Eigen::VectorXd& axialOmega() const { return axial_omega_; }
+
+  /// Full ANCF coordinates of y at rope length L (q = B(L) y).
+  Eigen::VectorXd expand(const Eigen::VectorXd& y, double L) const;
+  /// Position of node j [m]: sum_k psi_k(x_j) a_k.
+  Eigen::Vector3d nodePosition(const Eigen::VectorXd& y, int j) const;
+  /// B(L)^T x for a full-coordinate force x.
+  Eigen::VectorXd projectForce(const Eigen::VectorXd& x, double L) const;
+  /// The M-orthogonal projection of full coordinates x: solves M_r y = B^T M x, with M the
+  /// rope's mass matrix at length L (AncfRope::massMatrix) and M_r = B^T M B.
+  Eigen::VectorXd project(const Eigen::VectorXd& x, const SparseMatrix& M, double L) const;
+  /// Scalar reduced mass Psi^T M_s Psi (m x m) for the rope's mass matrix M at length L.
+  Eigen::MatrixXd scalarMass(const SparseMatrix& M, double L) const;
+
+ private:
+  Eigen::MatrixXd position_, slope_;  ///< nodes x m
+  Eigen::VectorXd transverse_omega_, axial_omega_;
+  // Psi(L) over the 2 (N+1) scalar coordinates (positions, slopes in d/dx) and the scalar
+  // block of a full matrix (every direction's block equals it for an isotropic matrix).
+  Eigen::MatrixXd scalarRows(double L) const;
+};
+
+/// Scalar x-x block of an isotropic or x-z-symmetric full rope matrix: rows/cols 6 j + 3 t + c
+/// for direction c (0: x, 2: z) as scalar index 2 j + t.
+SparseMatrix scalarBlock(const SparseMatrix& A, int direction);
+
+}  // namespace crane_twin

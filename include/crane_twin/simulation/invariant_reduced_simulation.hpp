@@ -1,0 +1,120 @@
+// A scene run with the reduced rope on the rotation-invariant basis (rope.model: reduced, the
+// default rope.reduction: invariant; docs/model.md "Reduced rope"): the full-order model's rope,
+// support, drives and initial state (CraneSimulation), the state projected onto the basis
+// (InvariantRopeBasis) and integrated by InvariantReducedSolver. Swinging, slewing and trolley
+// travel need nothing more: the basis carries any rigid rotation; hoisting keeps the reduced
+// coordinates and rescales the matrices with the length.
+//
+// Hand-over to full order, where the basis cannot carry the state, and back:
+//  - the rope goes slack: top tension under kSlackTensionFraction of the hanging weight, or
+//    (every kStrainCheckSteps steps) a Gauss point's axial strain under kSlackFraction of the static
+//    strain under the end mass;
+//  - a reduced step fails (Newton, even halved; a non-finite state);
+//  - the error indicator (every kCheckSteps steps): the displacement a static correction of the
+//    full equations' residual at the expanded state would add, dq = (K + s M)^-1 r with the top
+//    held (what the basis leaves out), exceeds kIndicatorTolerance at a node.
+// A start the basis does not carry (the hand-back criteria below fail on the scene's initial
+// state: a stress-free rope, a velocity given to the payload alone) begins at full order.
+// At full order, every kHandBackSteps steps: the run comes back once the rope is taut again
+// (kTautFraction, kTautTensionFraction) and the projected state's indicator and position error
+// are under kHandBackTolerance. Hand-overs and the steps taken at full order are counted
+// (summary line, CSV column `full_order`, node diagnostics).
+#pragma once
+
+#include <Eigen/SparseCholesky>
+#include <memory>
+
+#include "crane_twin/rope/invariant_rope_basis.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/solvers/invariant_reduced_solver.hpp"
+
+namespace crane_twin {
+
+/// Basis sizes of a scene: rope.mode_count transverse modes when > 0, else the default
+/// (InvariantBasisSettings).
+InvariantBasisSettings invariantBasisSettings(const Scene& scene);
+
+class InvariantReducedSimulation final : public Simulation {
+ public:
+  /// Throws InputError for what the full-order model refuses, naming the key.
+  explicit InvariantReducedSimulation(const CraneModel& model);
+  void initialize() override;
+  void step() override;
+  void setCommand(const CommandEntry& command) override { full_.setCommand(command); }
+  double time() const override { return full_order_ ? full_.time() : state_.t; }
+  SeriesValues series() const override;
+  void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab, Eigen::Vector3d& jib_tip) const override;
+  int ropeNodes() const override { return full_.ropeNodes(); }
+  Eigen::Vector3d ropeNode(int j) const override {
+    return full_order_ ? full_.ropeNode(j) : solver_->nodePosition(state_.q, j);
+  }
+  CoupledState fullState() const override {
+    return full_order_ ? full_.fullState() : solver_->expand(state_);
+  }
+  const CraneDrives& drives() const override { return full_.drives(); }
+  const RopeSupport& support() const override { return full_.support(); }
+  std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override {
+    return sampleRopeCurve(fullState().q, full_.rope().element().length, per_element);
+  }
+  int subdomains() const override { return 1; }  ///< one basis for the whole run
+  long halvedSteps() const override { return solver_->halvedSteps() + full_.halvedSteps(); }
+  long handOvers() const override { return hand_overs_; }
+  long fullOrderSteps() const override { return full_order_steps_; }
+  bool integratingFullOrder() const override { return full_order_; }
+
+  const InvariantRopeBasis& basis() const { return *basis_; }
+  const InvariantReducedSolver& solver() const { return *solver_; }
+  const CraneSimulation& crane() const { return full_; }
+  /// The reduced state (y, z) while integrating reduced.
+  const CoupledState& reducedState() const { return state_; }
+  /// The error indicator at a full-coordinate state: max node |dq| [m] (header).
+  double errorIndicator(const CoupledState& full) const;
+  /// Why the last hand-over happened: slack, failure or indicator counts.
+  long slackHandOvers() const { return slack_hand_overs_; }
+  long failureHandOvers() const { return failure_hand_overs_; }
+  long indicatorHandOvers() const { return indicator_hand_overs_; }
+  /// 1 where the scene's start was not carried by the basis and the run began at full order.
+  long startHandOvers() const { return start_hand_overs_; }
+  /// Largest indicator value seen on a reduced step [m].
+  double maxIndicator() const { return max_indicator_; }
+
+  static constexpr double kSlackFraction = 0.1, kTautFraction = 0.2;
+  static constexpr double kSlackTensionFraction = 0.1, kTautTensionFraction = 0.2;
+  /// Steps between the error indicator's evaluations (a tangent assembly and a sparse LDL^T
+  /// of the full rope: measured 1.4 ms at 120 elements, so 250 steps keep it near 5 us a step)
+  /// and between the strain checks (O(m n_g)).
+  static constexpr int kCheckSteps = 250;
+  static constexpr int kStrainCheckSteps = 10;
+  static constexpr int kHandBackSteps = 20;
+  static constexpr double kIndicatorTolerance = 2e-3;  ///< [m]
+  /// Hand-back: largest node distance between the full state and its projection [m] (the
+  /// waves a slack episode leaves on the rope that the basis drops), and the indicator bound.
+  static constexpr double kHandBackTolerance = 5e-4;
+  /// Hand-back: energy the projection changes (kinetic relative to the top plus strain) against
+  /// the rope's own.
+  static constexpr double kHandBackEnergy = 1e-4;
+  /// Simulated time a hand-over stays at full order before the first hand-back trial [s]: the
+  /// waves of a snatch or a slack episode ring for about a second on a 60 m rope.
+  static constexpr double kHandBackDwell = 1.0;
+
+ private:
+  void handOver(const CoupledState& full);
+  bool slack(const CoupledState& s, bool check_strain) const;
+  bool tryHandBack();
+
+  CraneSimulation full_;
+  std::unique_ptr<InvariantRopeBasis> basis_;
+  std::unique_ptr<InvariantReducedSolver> solver_;
+  CoupledState state_;
+  double weight_ = 0.0, end_strain_ = 0.0;
+  bool full_order_ = false;
+  long steps_ = 0, full_order_steps_ = 0, hand_overs_ = 0;
+  long slack_hand_overs_ = 0, failure_hand_overs_ = 0, indicator_hand_overs_ = 0;
+  long start_hand_overs_ = 0;
+  double max_indicator_ = 0.0;
+  double full_since_ = 0.0;  ///< time of the last hand-over [s]
+  mutable Eigen::SimplicialLDLT<SparseMatrix> indicator_ldlt_;
+  mutable bool indicator_pattern_ = false;
+};
+
+}  // namespace crane_twin

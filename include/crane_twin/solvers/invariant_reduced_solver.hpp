@@ -1,0 +1,119 @@
+// The reduced rope on the rotation-invariant Ritz basis (InvariantRopeBasis, docs/model.md
+// "Reduced rope"): the Galerkin projection of the full-order equations onto q = B y,
+// B = Psi (x) I3,
+//   M_r y'' + Q_r(y, y') - F_r + E^T lambda = 0,   M_r = (Psi^T M_s Psi) (x) I3 = M_rs (x) I3,
+//   M_z z'' + C_z z' + K_z z - D^T lambda = 0,      Q_r = B^T Q(B y),  F_r = B^T F_g,
+//   a_0 - r_p(z) = 0                                 (E = [I3 0 ...]: psi_0 = 1, psi_k>0(0) = 0)
+// integrated by the full model's generalized-alpha Newton step (integrators/newton_step.hpp).
+//
+// The elastic force is the exact one at the expanded state, integrated at the full model's
+// Gauss points without expanding: with A = [a_0 ... a_(m-1)] (3 x m), D1, D2 (m x n_g) the
+// shapes' first and second xi-derivatives at the points and w_g their weights in xi,
+//   r_x = A D1 / L,   r_xx = A D2 / L^2,   Q_A = sum_g w_g (phi_a,g D1_g^T + phi_b,g D2_g^T / L)
+// (phi_a, phi_b the gradient of the energy density, ancfCablePoint): two 3 x m x n_g products
+// and one density per point, O(m n_g), no assembly and no sparse factorisation. The
+// axial damping force c EA eps' t is integrated the same way.
+//
+// Iteration matrix: the tangent of a straight rope along its chord d (unit vector from the top
+// to the end node), per point phi_aa = (N / |r_x|) (I - d d^T) + EA d d^T, so
+//   K_it = (1/L) [K_g (x) (I - d d^T) + EA K_a (x) d d^T] + (EI / L^3) K_b (x) (I - d d^T),
+//   K_a = sum w_g D1_g D1_g^T,  K_g = sum w_g (N_g / |r_x,g|) D1_g D1_g^T,  K_b = sum w D2 D2^T,
+// and a M_r + gamma h C_it + beta h^2 K_it with the constraint rows, factorised (dense LU,
+// 3m + 3) when the chord has turned, the length changed, the weights changed or the last step
+// took many iterations. The residual is exact, so the converged step does not depend on this
+// approximation; only the iteration count does.
+#pragma once
+
+#include <string>
+
+#include "crane_twin/integrators/coupled_state.hpp"
+#include "crane_twin/integrators/generalized_alpha.hpp"
+#include "crane_twin/integrators/newton_step.hpp"
+#include "crane_twin/rope/ancf_rope.hpp"
+#include "crane_twin/rope/invariant_rope_basis.hpp"
+#include "crane_twin/rope/rope_support.hpp"
+
+namespace crane_twin {
+
+class InvariantReducedSolver {
+ public:
+  /// Rope (for its material, masses and current length), basis and support are referenced and
+  /// must outlive the solver. States are in reduced coordinates: q = y (3 m), z as the support's.
+  InvariantReducedSolver(const AncfRope& rope, const InvariantRopeBasis& basis,
+                         RopeSupport& support, const GeneralizedAlpha& scheme, double time_step,
+                         NewtonSettings newton = {});
+
+  /// Axial strain-rate damping c [s] (as FullOrderSolver::setRopeDamping).
+  void setRopeDamping(double c);
+  /// Re-read the rope's length after AncfRope::setLength (hoisting: y is kept, docs/model.md).
+  void refreshLength();
+
+  /// Consistent accelerations of a reduced state (y, y', z, z' given).
+  void initializeAccelerations(CoupledState& s);
+  /// One step of size h, halved where Newton fails (FullOrderSolver::step). Throws
+  /// NumericalFailure; s is then at the step's start.
+  void step(CoupledState& s);
+  long halvedSteps() const { return halved_steps_; }
+
+  /// The reduced state of a full-coordinate state (M-orthogonal projection of q, v, q'', a; the
+  /// top position made exact); and the full-coordinate state of a reduced one.
+  CoupledState project(const CoupledState& full) const;
+  CoupledState expand(const CoupledState& reduced) const;
+  /// Largest node distance between full positions q and their projection's expansion [m].
+  double projectionError(const Eigen::VectorXd& q) const;
+
+  /// Reduced elastic (and damping) force Q_r(y, y') and the elastic energy U(B y) [J].
+  Eigen::VectorXd force(const Eigen::VectorXd& y, const Eigen::VectorXd& yd) const;
+  double elasticEnergy(const Eigen::VectorXd& y) const;
+  /// Smallest axial strain |r_x| - 1 over the Gauss points (a slack check).
+  double minStrain(const Eigen::VectorXd& y) const;
+  /// Total mechanical energy (FullOrderSolver::energy) and the top tension [N].
+  double energy(const CoupledState& s) const;
+  double topTension(const CoupledState& s) const;
+  /// M_r x for a reduced vector x.
+  Eigen::VectorXd massTimes(const Eigen::VectorXd& x) const;
+  const Eigen::VectorXd& gravityForce() const { return gravity_; }
+  Eigen::Vector3d nodePosition(const Eigen::VectorXd& y, int j) const {
+    return basis_.nodePosition(y, j);
+  }
+  /// Iteration matrices factorised, and the Newton iterations and steps taken so far.
+  int factorizations() const { return factorizations_; }
+  long newtonIterations() const { return newton_iterations_; }
+  long steps() const { return steps_; }
+
+ private:
+  bool tryStep(CoupledState& s, double h, std::string& why);
+  // Fill and factorise the iteration matrix for weights (a, c, k) and chord direction d.
+  bool factorize(double a, double c, double k, const Eigen::Matrix3d& G, const Eigen::VectorXd& y);
+  Eigen::Vector3d chord(const Eigen::VectorXd& y) const;
+
+  const AncfRope& rope_;
+  const InvariantRopeBasis& basis_;
+  RopeSupport& support_;
+  GeneralizedAlpha ga_;
+  double h_;
+  NewtonSettings newton_;
+  double damping_ = 0.0;
+  long halved_steps_ = 0;
+  int m_ = 0;                      ///< shapes
+  Eigen::MatrixXd D1_, D2_;        ///< m x n_g shape xi-derivatives at the Gauss points
+  Eigen::VectorXd w_;              ///< n_g weights in xi
+  Eigen::MatrixXd Ka_, Kb_;        ///< sum w D1 D1^T, sum w D2 D2^T (m x m)
+  Eigen::MatrixXd mass_hat_;       ///< Psi^T M_hat Psi of the rope alone per unit mu L
+  Eigen::RowVectorXd psi_top_, psi_end_;
+  // Length-dependent.
+  double L_ = 0.0;
+  Eigen::MatrixXd Mrs_;            ///< M_rs (m x m)
+  Eigen::VectorXd gravity_;        ///< F_r (3 m)
+  // Iteration matrix cache.
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
+  bool factored_ = false;
+  double fact_a_ = 0, fact_c_ = 0, fact_k_ = 0, fact_L_ = 0;
+  Eigen::Matrix3d fact_G_ = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d fact_d_ = Eigen::Vector3d::Zero();
+  int last_iterations_ = 0;
+  int factorizations_ = 0;
+  long newton_iterations_ = 0, steps_ = 0;
+};
+
+}  // namespace crane_twin

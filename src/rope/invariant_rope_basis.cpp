@@ -1,0 +1,195 @@
+#include "crane_twin/rope/invariant_rope_basis.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "crane_twin/structure/modal_analysis.hpp"
+
+namespace crane_twin {
+
+SparseMatrix scalarBlock(const SparseMatrix& A, int direction) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int c = 0; c < A.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(A, c); it; ++it)
+      if (it.row() % 3 == direction && it.col() % 3 == direction)
+        t.emplace_back(static_cast<int>(it.row() / 3), static_cast<int>(it.col() / 3), it.value());
+  SparseMatrix S(A.rows() / 3, A.cols() / 3);
+  S.setFromTriplets(t.begin(), t.end());
+  return S;
+}
+
+namespace {
+
+// Lowest `count` modes of (K, M) (interior scalar matrices): ARPACK shift-invert for a small
+// part of the spectrum, Eigen's dense generalised solver where the part is large or ARPACK
+// cannot run (a short rope of few elements).
+ModalBasis lowestScalarModes(const SparseMatrix& K, const SparseMatrix& M, int count) {
+  const int n = static_cast<int>(K.rows());
+  count = std::min(count, n);
+  if (count <= 0) return {};
+  if (count < n / 4) {
+    try {
+      ModalOptions opt;
+      opt.count = count;
+      return lowestModes(K, M, opt);
+    } catch (const std::exception&) {
+      // dense below
+    }
+  }
+  const Eigen::MatrixXd Kd(K), Md(M);
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kd, Md);
+  if (es.info() != Eigen::Success) throw std::runtime_error("reduced rope basis: eigen-solve failed");
+  ModalBasis b;
+  b.omega2 = es.eigenvalues().head(count);
+  b.phi = es.eigenvectors().leftCols(count);
+  return b;
+}
+
+}  // namespace
+
+InvariantRopeBasis::InvariantRopeBasis(const AncfRope& rope, const InvariantBasisSettings& s) {
+  if (s.transverse_modes < 0 || s.axial_modes < 0) {
+    throw std::invalid_argument("reduced rope basis: mode counts must be >= 0");
+  }
+  const int N = rope.elements(), nodes = N + 1, ns = 2 * nodes;
+  const double L = rope.length(), l = rope.element().length;
+  const double EA = rope.element().axial_stiffness, mu = rope.element().mass_per_length;
+  // The vertical rope at its static tension profile T(x) = g (m_end + mu (L - x)), stretched by
+  // T / EA. Without gravity the shapes are those of the rope under 9.81 m/s^2 (a basis, not a
+  // state: any tension profile gives smooth shapes).
+  const double g = rope.gravity().norm() > 0.0 ? rope.gravity().norm() : 9.81;
+  Eigen::VectorXd q(rope.dofs());
+  Eigen::Vector3d r = Eigen::Vector3d::Zero();
+  const Eigen::Vector3d d(0.0, 0.0, -1.0);
+  for (int j = 0; j < nodes; ++j) {
+    const double T = g * (rope.endMass() + mu * (L - j * l));
+    q.segment<3>(6 * j) = r;
+    q.segment<3>(6 * j + 3) = (1.0 + T / EA) * d;
+    r += (1.0 + g * (rope.endMass() + mu * (L - (j + 0.5) * l)) / EA) * l * d;
+  }
+  const SparseMatrix K = rope.tangentStiffness(q);
+  const SparseMatrix Ms = scalarBlock(rope.massMatrix(), 0);
+  const SparseMatrix KT = scalarBlock(K, 0), KA = scalarBlock(K, 2);
+  // Interior: the top node's position (scalar row 0) held.
+  const SparseMatrix Mi = Ms.bottomRightCorner(ns - 1, ns - 1);
+  const SparseMatrix KTi = KT.bottomRightCorner(ns - 1, ns - 1);
+  const SparseMatrix KAi = KA.bottomRightCorner(ns - 1, ns - 1);
+
+  std::vector<Eigen::VectorXd> candidates;  // physical scalar coordinates (slopes d/dx)
+  {
+    Eigen::VectorXd xi(ns);
+    for (int j = 0; j < nodes; ++j) {
+      xi(2 * j) = static_cast<double>(j) / N;
+      xi(2 * j + 1) = 1.0 / L;
+    }
+    candidates.push_back(xi);
+  }
+  // Static shapes under the weight (end mass included in M_s): K_i psi = M_i 1_positions. A
+  // tiny mass shift keeps the solve definite where the rope has no tension and no bending.
+  Eigen::VectorXd ones = Eigen::VectorXd::Zero(ns - 1);
+  for (int i = 1; i < ns - 1; i += 2) ones(i) = 1.0;  // interior index i is scalar i + 1
+  const Eigen::VectorXd weight = Mi * ones;
+  for (const SparseMatrix* Ki : {&KTi, &KAi}) {
+    const double shift = 1e-9 * Ki->diagonal().cwiseAbs().maxCoeff() /
+                         std::max(Mi.diagonal().cwiseAbs().maxCoeff(), 1e-300);
+    Eigen::SimplicialLDLT<SparseMatrix> ldlt(SparseMatrix(*Ki + shift * Mi));
+    if (ldlt.info() != Eigen::Success) continue;
+    Eigen::VectorXd v = Eigen::VectorXd::Zero(ns);
+    v.tail(ns - 1) = ldlt.solve(weight);
+    if (v.allFinite()) candidates.push_back(v);
+  }
+  const ModalBasis transverse = lowestScalarModes(KTi, Mi, s.transverse_modes);
+  const ModalBasis axial = lowestScalarModes(KAi, Mi, s.axial_modes);
+  transverse_omega_ = transverse.omega2.cwiseMax(0.0).cwiseSqrt();
+  axial_omega_ = axial.omega2.cwiseMax(0.0).cwiseSqrt();
+  for (const ModalBasis* b : {&transverse, &axial})
+    for (int k = 0; k < b->phi.cols(); ++k) {
+      Eigen::VectorXd v = Eigen::VectorXd::Zero(ns);
+      v.tail(ns - 1) = b->phi.col(k);
+      candidates.push_back(v);
+    }
+
+  // M_s-orthogonal Gram-Schmidt (twice) of the candidates; psi_0 = 1 stays apart.
+  std::vector<Eigen::VectorXd> kept;
+  for (Eigen::VectorXd v : candidates) {
+    const double norm0 = std::sqrt(v.dot(Ms * v));
+    if (!(norm0 > 0.0)) continue;
+    for (int pass = 0; pass < 2; ++pass)
+      for (const Eigen::VectorXd& u : kept) v -= u.dot(Ms * v) * u;
+    const double norm = std::sqrt(v.dot(Ms * v));
+    if (!(norm > 1e-6 * norm0)) continue;
+    kept.push_back(v / norm);
+  }
+  const int m = 1 + static_cast<int>(kept.size());
+  position_.resize(nodes, m);
+  slope_.resize(nodes, m);
+  position_.col(0).setOnes();
+  slope_.col(0).setZero();
+  for (int k = 1; k < m; ++k) {
+    const Eigen::VectorXd& v = kept[k - 1];
+    double peak = 0.0;
+    for (int j = 0; j < nodes; ++j) peak = std::max(peak, std::abs(v(2 * j)));
+    if (!(peak > 0.0)) peak = 1.0;
+    for (int j = 0; j < nodes; ++j) {
+      position_(j, k) = v(2 * j) / peak;
+      slope_(j, k) = v(2 * j + 1) * L / peak;  // d/dxi
+    }
+  }
+}
+
+Eigen::MatrixXd InvariantRopeBasis::scalarRows(double L) const {
+  const int nodes = this->nodes();
+  Eigen::MatrixXd P(2 * nodes, shapes());
+  for (int j = 0; j < nodes; ++j) {
+    P.row(2 * j) = position_.row(j);
+    P.row(2 * j + 1) = slope_.row(j) / L;
+  }
+  return P;
+}
+
+Eigen::VectorXd InvariantRopeBasis::expand(const Eigen::VectorXd& y, double L) const {
+  const int m = shapes(), nodes = this->nodes();
+  const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> Y(y.data(), 3, m);
+  const Eigen::Matrix<double, 3, Eigen::Dynamic> pos = Y * position_.transpose();
+  const Eigen::Matrix<double, 3, Eigen::Dynamic> slo = Y * slope_.transpose() / L;
+  Eigen::VectorXd q(6 * nodes);
+  for (int j = 0; j < nodes; ++j) {
+    q.segment<3>(6 * j) = pos.col(j);
+    q.segment<3>(6 * j + 3) = slo.col(j);
+  }
+  return q;
+}
+
+Eigen::Vector3d InvariantRopeBasis::nodePosition(const Eigen::VectorXd& y, int j) const {
+  const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> Y(y.data(), 3, shapes());
+  return Y * position_.row(j).transpose();
+}
+
+Eigen::VectorXd InvariantRopeBasis::projectForce(const Eigen::VectorXd& x, double L) const {
+  // x as 3 x 2(N+1) (column = scalar coordinate 2 j + t); B^T x = vec(X Psi).
+  const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> X(x.data(), 3, 2 * nodes());
+  const Eigen::Matrix<double, 3, Eigen::Dynamic> Y = X * scalarRows(L);
+  return Eigen::Map<const Eigen::VectorXd>(Y.data(), Y.size());
+}
+
+Eigen::MatrixXd InvariantRopeBasis::scalarMass(const SparseMatrix& M, double L) const {
+  const Eigen::MatrixXd P = scalarRows(L);
+  return P.transpose() * (scalarBlock(M, 0) * P);
+}
+
+Eigen::VectorXd InvariantRopeBasis::project(const Eigen::VectorXd& x, const SparseMatrix& M,
+                                            double L) const {
+  const Eigen::MatrixXd P = scalarRows(L);
+  const Eigen::MatrixXd MsP = scalarBlock(M, 0) * P;
+  const Eigen::MatrixXd Mr = P.transpose() * MsP;
+  const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> X(x.data(), 3, 2 * nodes());
+  const Eigen::MatrixXd rhs = X * MsP;  // 3 x m
+  const Eigen::MatrixXd Y = Mr.ldlt().solve(rhs.transpose()).transpose();
+  return Eigen::Map<const Eigen::VectorXd>(Y.data(), Y.size());
+}
+
+}  // namespace crane_twin

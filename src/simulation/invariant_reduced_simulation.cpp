@@ -1,0 +1,181 @@
+#include "crane_twin/simulation/invariant_reduced_simulation.hpp"
+
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <cmath>
+
+#include "crane_twin/integrators/numerical_failure.hpp"
+#include "crane_twin/io/input_error.hpp"
+#include "crane_twin/rope/rope_modes.hpp"
+
+namespace crane_twin {
+
+InvariantBasisSettings invariantBasisSettings(const Scene& sc) {
+  InvariantBasisSettings s;
+  if (sc.rope.mode_count > 0) s.transverse_modes = sc.rope.mode_count;
+  // A rope of few elements has few scalar coordinates: keep what it has (2 (N+1) - 1 interior).
+  const int interior = 2 * (sc.rope.elements + 1) - 1;
+  if (s.transverse_modes > interior) {
+    throw InputError(sc.file + ": key 'rope.mode_count': at most " + std::to_string(interior) +
+                     " transverse modes for " + std::to_string(sc.rope.elements) +
+                     " elements, got " + std::to_string(s.transverse_modes));
+  }
+  s.axial_modes = std::min(s.axial_modes, interior);
+  return s;
+}
+
+InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model) : full_(model) {
+  const Scene& sc = full_.model().scene;
+  // The basis of the rope at its scene length (CraneSimulation built it there).
+  basis_ = std::make_unique<InvariantRopeBasis>(full_.rope(), invariantBasisSettings(sc));
+  solver_ = std::make_unique<InvariantReducedSolver>(
+      full_.rope(), *basis_, full_.support(),
+      GeneralizedAlpha::forScene(sc), sc.time_step);
+  solver_->setRopeDamping(sc.rope.damping);
+}
+
+void InvariantReducedSimulation::initialize() {
+  const CraneModel& m = full_.model();
+  weight_ = (m.end_mass + m.ropeMass()) * m.scene.gravity;
+  end_strain_ = m.end_mass * m.scene.gravity / m.rope.axial_stiffness;
+  full_order_ = false;
+  steps_ = full_order_steps_ = hand_overs_ = 0;
+  slack_hand_overs_ = failure_hand_overs_ = indicator_hand_overs_ = start_hand_overs_ = 0;
+  max_indicator_ = 0.0;
+  const CoupledState f = full_.initialState();  // the rope at the scene's length
+  solver_->refreshLength();
+  full_.setState(f);
+  // A start the basis cannot carry (a stress-free rope, a velocity given to the payload alone)
+  // runs at full order until the hand-back criteria hold.
+  if (!tryHandBack()) {
+    full_order_ = true;
+    full_since_ = f.t;
+    ++hand_overs_;
+    ++start_hand_overs_;
+  }
+}
+
+void InvariantReducedSimulation::handOver(const CoupledState& full) {
+  full_.restartFrom(full);
+  full_since_ = full.t;
+  full_order_ = true;
+  ++hand_overs_;
+}
+
+bool InvariantReducedSimulation::slack(const CoupledState& s, bool check_strain) const {
+  if (!(weight_ > 0.0)) return false;
+  if (solver_->topTension(s) < kSlackTensionFraction * weight_) return true;
+  return check_strain && solver_->minStrain(s.q) < kSlackFraction * end_strain_;
+}
+
+double InvariantReducedSimulation::errorIndicator(const CoupledState& f) const {
+  const AncfRope& rope = full_.rope();
+  const SparseMatrix& M = rope.massMatrix();
+  Eigen::VectorXd Q;
+  const SparseMatrix K = rope.tangentStiffness(f.q, &Q);
+  // r = F_g - M q'' - Q (the top node's rows carry lambda and are held).
+  const Eigen::VectorXd r = rope.gravityForce() - M * f.qdd - Q;
+  const SparseMatrix A = withoutTopPosition(K) + withoutTopPosition(M);
+  if (!indicator_pattern_) {
+    indicator_ldlt_.analyzePattern(A);  // the rope's pattern never changes
+    indicator_pattern_ = true;
+  }
+  indicator_ldlt_.factorize(A);
+  if (indicator_ldlt_.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
+  const Eigen::VectorXd dq = indicator_ldlt_.solve(r.tail(r.size() - 3));
+  double e = 0.0;
+  for (int j = 1; j < rope.nodes(); ++j) e = std::max(e, dq.segment<3>(6 * j - 3).norm());
+  return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
+}
+
+bool InvariantReducedSimulation::tryHandBack() {
+  const CoupledState& f = full_.state();
+  const CraneModel& m = full_.model();
+  if (weight_ > 0.0) {
+    if (full_.solver().topTension(f) < kTautTensionFraction * weight_) return false;
+    double least = 1e300;
+    for (int j = 0; j < full_.ropeNodes(); ++j)
+      least = std::min(least, f.q.segment<3>(6 * j + 3).norm() - 1.0);
+    if (least < kTautFraction * m.end_mass * m.scene.gravity / m.rope.axial_stiffness) return false;
+  }
+  const double pe = solver_->projectionError(f.q);
+  if (pe > kHandBackTolerance) return false;
+  CoupledState r = solver_->project(f);
+  try {
+    solver_->initializeAccelerations(r);
+  } catch (const NumericalFailure&) {
+    return false;
+  }
+  // The energy the projection drops or adds (kinetic relative to the top, and strain) against
+  // the rope's own: a hand-back that loses energy shifts the swing's period for good.
+  const CoupledState e = solver_->expand(r);
+  const SparseMatrix& M = full_.rope().massMatrix();
+  auto relative = [&](const Eigen::VectorXd& v) {
+    Eigen::VectorXd w = v;
+    for (int j = 0; j < full_.ropeNodes(); ++j) w.segment<3>(6 * j) -= v.head<3>();
+    return 0.5 * w.dot(M * w);
+  };
+  const double Tf = relative(f.v), Uf = full_.rope().elasticEnergy(f.q);
+  const double dE = std::abs(Tf - relative(e.v)) + std::abs(Uf - full_.rope().elasticEnergy(e.q));
+  if (!(dE < kHandBackEnergy * (Tf + Uf))) return false;
+  const double ind = errorIndicator(e);
+  if (!(ind < kHandBackTolerance)) return false;
+  state_ = r;
+  full_order_ = false;
+  return true;
+}
+
+void InvariantReducedSimulation::step() {
+  if (full_order_) {
+    full_.step();
+    ++full_order_steps_;
+    if (full_order_steps_ % kHandBackSteps == 0 && full_.time() - full_since_ >= kHandBackDwell) {
+      tryHandBack();
+    }
+    return;
+  }
+  const double h = full_.model().scene.time_step;
+  full_.advanceDrives(state_.t, h);
+  if (full_.followHoistLength()) solver_->refreshLength();  // y kept (header)
+  ++steps_;
+  try {
+    solver_->step(state_);
+  } catch (const NumericalFailure&) {
+    // state_ is at the step's start, already at the new length: the full model takes the step.
+    handOver(solver_->expand(state_));
+    ++failure_hand_overs_;
+    full_.stepAfterDrives();
+    ++full_order_steps_;
+    return;
+  }
+  if (slack(state_, steps_ % kStrainCheckSteps == 0)) {
+    handOver(solver_->expand(state_));
+    ++slack_hand_overs_;
+    return;
+  }
+  if (steps_ % kCheckSteps == 0) {
+    const double e = errorIndicator(solver_->expand(state_));
+    max_indicator_ = std::max(max_indicator_, e);
+    if (!(e < kIndicatorTolerance)) {
+      handOver(solver_->expand(state_));
+      ++indicator_hand_overs_;
+    }
+  }
+}
+
+void InvariantReducedSimulation::sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
+                                        Eigen::Vector3d& jib_tip) const {
+  if (full_order_) return full_.sample(payload, cab, jib_tip);
+  payload = solver_->nodePosition(state_.q, full_.ropeNodes() - 1);
+  cab = full_.support().cabDisplacement(state_.z);
+  jib_tip = full_.support().jibTipDisplacement(state_.z);
+}
+
+SeriesValues InvariantReducedSimulation::series() const {
+  SeriesValues v = full_.seriesOf(fullState());
+  v.subdomains = 1;
+  v.full_order_steps = full_order_steps_;
+  return v;
+}
+
+}  // namespace crane_twin

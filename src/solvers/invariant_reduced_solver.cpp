@@ -1,0 +1,296 @@
+#include "crane_twin/solvers/invariant_reduced_solver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "crane_twin/elements/gauss_legendre.hpp"
+#include "crane_twin/integrators/numerical_failure.hpp"
+#include "crane_twin/integrators/step_halving.hpp"
+#include "crane_twin/rope/rope_support.hpp"
+
+namespace crane_twin {
+
+namespace {
+using Matrix3X = Eigen::Matrix<double, 3, Eigen::Dynamic>;
+
+// (Y (x) I3) applied as a 3 x m matrix product: vec(X S) for x = vec(X), S symmetric m x m.
+Eigen::VectorXd kronTimes(const Eigen::MatrixXd& S, const Eigen::VectorXd& x) {
+  const Eigen::Map<const Matrix3X> X(x.data(), 3, S.rows());
+  const Matrix3X Y = X * S;
+  return Eigen::Map<const Eigen::VectorXd>(Y.data(), Y.size());
+}
+
+constexpr int kMaxHalvings = 6;
+// Refactorise the iteration matrix when the chord turned by more than this [rad] or the length
+// changed by this fraction since the last factorisation, or the last step took this many
+// Newton iterations.
+constexpr double kChordTurn = 0.02;
+constexpr double kLengthChange = 1e-3;
+constexpr int kSlowIterations = 4;
+// Gauss points on the whole rope for the reduced force: measured on hard_swing_30deg (120
+// elements), 1 point per element gives 1.3e-5 m payload difference to full order, 2 points
+// 2.2e-6 m; 40 elements with 1 point (40 points) tripped the error indicator (docs/model.md).
+constexpr int kQuadraturePoints = 100;
+// The support's compliance G turns with the slewing angle: refactorise past this relative change.
+constexpr double kSupportChange = 1e-2;
+}  // namespace
+
+InvariantReducedSolver::InvariantReducedSolver(const AncfRope& rope,
+                                               const InvariantRopeBasis& basis,
+                                               RopeSupport& support,
+                                               const GeneralizedAlpha& scheme, double time_step,
+                                               NewtonSettings newton)
+    : rope_(rope), basis_(basis), support_(support), ga_(scheme), h_(time_step), newton_(newton) {
+  if (!(time_step > 0.0)) throw std::invalid_argument("time step must be positive");
+  if (basis.nodes() != rope.nodes()) throw std::invalid_argument("basis and rope differ in nodes");
+  m_ = basis.shapes();
+  const int N = rope.elements();
+  Eigen::VectorXd xg, wg;
+  // The reduced quadrature (docs/model.md): about kQuadraturePoints points on the whole rope,
+  // at most the full model's rule per element.
+  const int per_element =
+      std::clamp((kQuadraturePoints + N - 1) / N, 1, rope.element().gauss_points);
+  gaussLegendre01(per_element, xg, wg);
+  const int ng = static_cast<int>(xg.size());
+  D1_.resize(m_, N * ng);
+  D2_.resize(m_, N * ng);
+  w_.resize(N * ng);
+  const double le = 1.0 / N;  // element length in xi
+  const Eigen::MatrixXd& P = basis.positionRows();
+  const Eigen::MatrixXd& S = basis.slopeRows();
+  for (int e = 0; e < N; ++e)
+    for (int g = 0; g < ng; ++g) {
+      const int c = e * ng + g;
+      const Eigen::Vector4d sx = ancfShapeDx(xg(g), le), sxx = ancfShapeDxx(xg(g), le);
+      for (int k = 0; k < m_; ++k) {
+        const Eigen::Vector4d nodal(P(e, k), S(e, k), P(e + 1, k), S(e + 1, k));
+        D1_(k, c) = sx.dot(nodal);
+        D2_(k, c) = sxx.dot(nodal);
+      }
+      w_(c) = wg(g) * le;
+    }
+  Ka_ = D1_ * w_.asDiagonal() * D1_.transpose();
+  Kb_ = D2_ * w_.asDiagonal() * D2_.transpose();
+  psi_top_ = P.row(0);
+  psi_end_ = P.row(N);
+  // The rope's own mass in xi-units is mu L times a constant matrix (docs/model.md).
+  const double L = rope.length(), mu = rope.element().mass_per_length;
+  mass_hat_ = (basis.scalarMass(rope.massMatrix(), L) - rope.topMass() * psi_top_.transpose() * psi_top_ -
+               rope.endMass() * psi_end_.transpose() * psi_end_) /
+              (mu * L);
+  refreshLength();
+}
+
+void InvariantReducedSolver::setRopeDamping(double c) {
+  if (!std::isfinite(c) || c < 0.0) throw std::invalid_argument("rope damping must be >= 0");
+  damping_ = c;
+}
+
+void InvariantReducedSolver::refreshLength() {
+  L_ = rope_.length();
+  Mrs_ = rope_.element().mass_per_length * L_ * mass_hat_ +
+         rope_.topMass() * psi_top_.transpose() * psi_top_ +
+         rope_.endMass() * psi_end_.transpose() * psi_end_;
+  Mrs_ = 0.5 * (Mrs_ + Mrs_.transpose()).eval();
+  // F_r = B^T M (1 (x) g) = M_rs e_0 (x) g: psi_0 = 1 is the uniform field.
+  gravity_.resize(3 * m_);
+  for (int k = 0; k < m_; ++k) gravity_.segment<3>(3 * k) = Mrs_(k, 0) * rope_.gravity();
+}
+
+Eigen::VectorXd InvariantReducedSolver::massTimes(const Eigen::VectorXd& x) const {
+  return kronTimes(Mrs_, x);
+}
+
+Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
+                                              const Eigen::VectorXd& yd) const {
+  // One pass over the points: r_x, r_xx (and r_x') as sums of the columns of A, the density's
+  // gradient, and the rank-one updates of Q_A (the inner size m is small: fixed 3-vectors).
+  const double EA = rope_.element().axial_stiffness, EI = rope_.element().bending_stiffness;
+  const double c1 = 1.0 / L_, c2 = 1.0 / (L_ * L_), cEA = damping_ * EA;
+  const bool damped = cEA > 0.0 && yd.size() == y.size();
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(3 * m_);
+  double* Q = out.data();
+  const double* A = y.data();
+  const double* Ad = yd.data();
+  CablePointDerivatives d;
+  for (int g = 0; g < w_.size(); ++g) {
+    const double* d1 = D1_.col(g).data();
+    const double* d2 = D2_.col(g).data();
+    Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
+    for (int k = 0; k < m_; ++k) {
+      const Eigen::Map<const Eigen::Vector3d> ak(A + 3 * k);
+      a += d1[k] * ak;
+      b += d2[k] * ak;
+    }
+    a *= c1;
+    b *= c2;
+    ancfCablePoint(EA, EI, a, b, false, d);
+    if (damped) {
+      Eigen::Vector3d ad = Eigen::Vector3d::Zero();
+      for (int k = 0; k < m_; ++k) ad += d1[k] * Eigen::Map<const Eigen::Vector3d>(Ad + 3 * k);
+      const Eigen::Vector3d t = a.normalized();
+      d.fa += cEA * c1 * t.dot(ad) * t;
+    }
+    const Eigen::Vector3d fa = w_(g) * d.fa, fb = (w_(g) * c1) * d.fb;
+    for (int k = 0; k < m_; ++k) {
+      Eigen::Map<Eigen::Vector3d> qk(Q + 3 * k);
+      qk += d1[k] * fa + d2[k] * fb;
+    }
+  }
+  return out;
+}
+
+double InvariantReducedSolver::elasticEnergy(const Eigen::VectorXd& y) const {
+  const double EA = rope_.element().axial_stiffness, EI = rope_.element().bending_stiffness;
+  const Eigen::Map<const Matrix3X> A(y.data(), 3, m_);
+  const Matrix3X Rx = A * D1_ / L_;
+  const Matrix3X Rxx = A * D2_ / (L_ * L_);
+  double U = 0.0;
+  for (int g = 0; g < w_.size(); ++g) {
+    const double gx = Rx.col(g).norm();
+    const double kappa = Rx.col(g).cross(Rxx.col(g)).norm() / (gx * gx * gx);
+    U += w_(g) * L_ * 0.5 * (EA * (gx - 1.0) * (gx - 1.0) + EI * kappa * kappa);
+  }
+  return U;
+}
+
+double InvariantReducedSolver::minStrain(const Eigen::VectorXd& y) const {
+  const Eigen::Map<const Matrix3X> A(y.data(), 3, m_);
+  const Matrix3X Rx = A * D1_ / L_;
+  return Rx.colwise().norm().minCoeff() - 1.0;
+}
+
+Eigen::Vector3d InvariantReducedSolver::chord(const Eigen::VectorXd& y) const {
+  const Eigen::Vector3d c = basis_.nodePosition(y, rope_.nodes() - 1) - y.head<3>();
+  const double n = c.norm();
+  return n > 0.0 ? Eigen::Vector3d(c / n) : Eigen::Vector3d(0.0, 0.0, -1.0);
+}
+
+bool InvariantReducedSolver::factorize(double a, double c, double k, const Eigen::Matrix3d& G,
+                                       const Eigen::VectorXd& y) {
+  const double EA = rope_.element().axial_stiffness, EI = rope_.element().bending_stiffness;
+  const Eigen::Vector3d d = chord(y);
+  const Eigen::Matrix3d dd = d * d.transpose(), tr = Eigen::Matrix3d::Identity() - dd;
+  // Tension-weighted K_g at the current state (N / |r_x| per point).
+  const Eigen::Map<const Matrix3X> A(y.data(), 3, m_);
+  const Matrix3X Rx = A * D1_ / L_;
+  Eigen::VectorXd wt(w_.size());
+  for (int g = 0; g < w_.size(); ++g) {
+    const double gx = Rx.col(g).norm();
+    wt(g) = w_(g) * std::max(0.0, EA * (gx - 1.0) / gx);
+  }
+  const Eigen::MatrixXd Kg = D1_ * wt.asDiagonal() * D1_.transpose();
+  const Eigen::MatrixXd Ktr = Kg / L_ + (EI / (L_ * L_ * L_)) * Kb_;  // on I - d d^T
+  const Eigen::MatrixXd Kax = (EA / L_) * Ka_;                         // on d d^T
+  const int n = 3 * m_;
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + 3, n + 3);
+  for (int i = 0; i < m_; ++i)
+    for (int j = 0; j < m_; ++j) {
+      J.block<3, 3>(3 * i, 3 * j) = a * Mrs_(i, j) * Eigen::Matrix3d::Identity() +
+                                    k * (Ktr(i, j) * tr + Kax(i, j) * dd) +
+                                    c * damping_ * Kax(i, j) * dd;
+    }
+  J.block<3, 3>(n, 0).setIdentity();
+  J.block<3, 3>(0, n).setIdentity();
+  J.block<3, 3>(n, n) = -G;
+  lu_.compute(J);
+  ++factorizations_;
+  factored_ = std::isfinite(lu_.rcond()) && lu_.rcond() > 1e-300;
+  fact_a_ = a, fact_c_ = c, fact_k_ = k, fact_L_ = L_, fact_G_ = G, fact_d_ = d;
+  return factored_;
+}
+
+void InvariantReducedSolver::initializeAccelerations(CoupledState& s) {
+  prepareSupportState(support_, s);
+  const int n = 3 * m_;
+  Eigen::VectorXd Azr, rz;
+  const Eigen::Matrix3d G = support_.setIterationWeights(1.0, 0.0, 0.0);
+  if (!factorize(1.0, 0.0, 0.0, G, s.q)) throw NumericalFailure("initial accelerations: singular mass");
+  factored_ = false;  // the step's weights differ
+  if (support_.size() > 0) rz = -support_.internalForce(s.z, s.zd, s.zdd);
+  Eigen::VectorXd rhs(n + 3);
+  rhs.head(n) = gravity_ - force(s.q, s.v);
+  rhs.tail<3>() = condenseSupport(support_, Eigen::Vector3d::Zero(), rz, Azr);
+  const Eigen::VectorXd x = lu_.solve(rhs);
+  storeConsistentAccelerations(support_, x.head(n), x.tail<3>(), Azr, s);
+}
+
+void InvariantReducedSolver::step(CoupledState& s) {
+  stepWithHalving(s, h_, kMaxHalvings,
+                  [this](CoupledState& x, double h, std::string& why) { return tryStep(x, h, why); },
+                  halved_steps_);
+}
+
+bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why) {
+  const int n = 3 * m_;
+  int iterations = 0;
+  const RopeIncrement increment = [&](const CoupledState& x, const NewtonWeights& w,
+                                      const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
+                                      Eigen::Vector3d& dmu, std::string& reason) {
+    const bool stale =
+        !factored_ || w.mass != fact_a_ || w.damping != fact_c_ || w.stiffness != fact_k_ ||
+        (w.G - fact_G_).norm() > kSupportChange * fact_G_.norm() || std::abs(L_ - fact_L_) > kLengthChange * L_ ||
+        (chord(x.q) - fact_d_).norm() > kChordTurn ||
+        (iterations == 0 && last_iterations_ >= kSlowIterations) ||
+        (iterations > 0 && iterations % kSlowIterations == 0);
+    if (stale && !factorize(w.mass, w.damping, w.stiffness, w.G, x.q)) {
+      reason = "singular reduced iteration matrix";
+      return false;
+    }
+    ++iterations;
+    Eigen::VectorXd rhs(n + 3);
+    rhs.head(n) = -w.stiffness * (massTimes(x.qdd) + force(x.q, x.v) - gravity_);
+    rhs.head<3>() -= w.stiffness * x.lambda;
+    rhs.tail<3>() = rc;
+    const Eigen::VectorXd dx = lu_.solve(rhs);
+    dq = dx.head(n);
+    dmu = dx.tail<3>();
+    return true;
+  };
+  const bool ok = newtonStep(ga_, support_, newton_, h, increment, s, why);
+  last_iterations_ = ok ? s.newton_iterations : kSlowIterations;
+  if (ok) newton_iterations_ += s.newton_iterations, ++steps_;
+  if (!ok) factored_ = false;
+  return ok;
+}
+
+CoupledState InvariantReducedSolver::project(const CoupledState& full) const {
+  CoupledState r = full;
+  const SparseMatrix& M = rope_.massMatrix();
+  r.q = basis_.project(full.q, M, L_);
+  r.q.head<3>() = full.q.head<3>();  // psi_k(0) = delta_k0: the top node exactly
+  r.v = basis_.project(full.v, M, L_);
+  r.v.head<3>() = full.v.head<3>();
+  r.qdd = basis_.project(full.qdd, M, L_);
+  r.a = full.a.size() == full.q.size() ? basis_.project(full.a, M, L_) : r.qdd;
+  return r;
+}
+
+CoupledState InvariantReducedSolver::expand(const CoupledState& reduced) const {
+  CoupledState f = reduced;
+  f.q = basis_.expand(reduced.q, L_);
+  f.v = basis_.expand(reduced.v, L_);
+  f.qdd = basis_.expand(reduced.qdd, L_);
+  f.a = basis_.expand(reduced.a, L_);
+  return f;
+}
+
+double InvariantReducedSolver::projectionError(const Eigen::VectorXd& q) const {
+  const Eigen::VectorXd y = basis_.project(q, rope_.massMatrix(), L_);
+  double e = 0.0;
+  for (int j = 0; j < rope_.nodes(); ++j)
+    e = std::max(e, (basis_.nodePosition(y, j) - q.segment<3>(6 * j)).norm());
+  return e;
+}
+
+double InvariantReducedSolver::energy(const CoupledState& s) const {
+  return 0.5 * s.v.dot(massTimes(s.v)) + elasticEnergy(s.q) - gravity_.dot(s.q) +
+         support_.energy(s.z, s.zd);
+}
+
+double InvariantReducedSolver::topTension(const CoupledState& s) const {
+  return ropeTopTension(s.lambda, rope_.topMass(), s.qdd.head<3>(), rope_.gravity());
+}
+
+}  // namespace crane_twin
