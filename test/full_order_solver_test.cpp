@@ -246,3 +246,18 @@ TEST(AnchoredRope, AxialDampingDampsTheBounceNotTheSwing) {
   EXPECT_LT(spread1, 0.2 * spread0) << spread1 << " N against " << spread0 << " N undamped";
   EXPECT_NEAR(x1, x0, 0.01 * std::abs(x0) + 1e-3);
 }
+
+TEST(AncfRopeLength, InPlaceLengthChangeEqualsAFreshRope) {
+  // Hoisting updates M and F_g in place (entry scaling l^(1 + s_i + s_j)); they must equal the
+  // matrices of a rope built at the new length, point masses included.
+  AncfRope hoisted(7, 60.0, 3.8, 4.4e7, 157.0, 3600.0, Eigen::Vector3d(0, 0, -9.81), 850.0);
+  for (const double L : {42.0, 3.0, 75.5}) {
+    hoisted.setLength(L);
+    const AncfRope fresh(7, L, 3.8, 4.4e7, 157.0, 3600.0, Eigen::Vector3d(0, 0, -9.81), 850.0);
+    const Eigen::MatrixXd d = Eigen::MatrixXd(hoisted.massMatrix()) - Eigen::MatrixXd(fresh.massMatrix());
+    EXPECT_LT(d.cwiseAbs().maxCoeff(), 1e-10 * Eigen::MatrixXd(fresh.massMatrix()).cwiseAbs().maxCoeff())
+        << "L = " << L;
+    EXPECT_LT((hoisted.gravityForce() - fresh.gravityForce()).cwiseAbs().maxCoeff(),
+              1e-10 * fresh.gravityForce().cwiseAbs().maxCoeff());
+  }
+}

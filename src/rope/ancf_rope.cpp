@@ -1,5 +1,6 @@
 #include "crane_twin/rope/ancf_rope.hpp"
 
+#include <cmath>
 #include <stdexcept>
 
 namespace crane_twin {
@@ -20,7 +21,15 @@ AncfRope::AncfRope(int elements, double length, double mass_per_length, double a
 void AncfRope::setLength(double length) {
   if (!(length > 0.0)) throw std::invalid_argument("rope length must be positive");
   element_.length = length / elements_;
-  assembleMass();
+  // In place (hoisting changes the length every step): the element mass int rho A S^T S dx
+  // scales with l^(1 + s_i + s_j), s = 1 on slope coordinates (S2, S4 carry a factor l); the
+  // point masses stay.
+  const double l = element_.length;
+  const double powers[3] = {l, l * l, l * l * l};
+  double* v = M_.valuePtr();
+  for (Eigen::Index i = 0; i < M_.nonZeros(); ++i)
+    v[i] = unit_mass_[i] * powers[mass_exponent_[i]] + point_mass_[i];
+  updateGravityForce();
 }
 
 void AncfRope::rescaleSlopes(Eigen::VectorXd& x, double from, double to) {
@@ -41,6 +50,29 @@ void AncfRope::assembleMass() {
     if (top_mass_ != 0.0) A.addEntry(d, d, top_mass_);
   }
   M_ = A.build();
+  M_.makeCompressed();
+  // The length scaling of every entry (setLength): value = unit l^(1 + s_i + s_j) + point.
+  const double l = element_.length;
+  unit_mass_.resize(M_.nonZeros());
+  point_mass_.assign(M_.nonZeros(), 0.0);
+  mass_exponent_.resize(M_.nonZeros());
+  for (int c = 0; c < M_.outerSize(); ++c)
+    for (SparseMatrix::InnerIterator it(M_, c); it; ++it) {
+      const Eigen::Index i = &it.valueRef() - M_.valuePtr();
+      const int e = ((it.row() % 6) >= 3) + ((it.col() % 6) >= 3);
+      double point = 0.0;
+      if (it.row() == it.col() && it.row() % 6 < 3) {
+        if (it.row() >= 6 * elements_) point += end_mass_;
+        if (it.row() < 3) point += top_mass_;
+      }
+      point_mass_[i] = point;
+      mass_exponent_[i] = e;
+      unit_mass_[i] = (it.value() - point) / std::pow(l, 1 + e);
+    }
+  updateGravityForce();
+}
+
+void AncfRope::updateGravityForce() {
   // F_g = M * (rigid translation field g): exact consistent gravity, incl. the end mass.
   Eigen::VectorXd g = Eigen::VectorXd::Zero(dofs());
   for (int j = 0; j < nodes(); ++j) g.segment<3>(6 * j) = gravity_;

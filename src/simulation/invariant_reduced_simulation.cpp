@@ -3,6 +3,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "crane_twin/integrators/numerical_failure.hpp"
 #include "crane_twin/io/input_error.hpp"
@@ -50,6 +51,7 @@ void InvariantReducedSimulation::initialize() {
   if (!tryHandBack()) {
     full_order_ = true;
     full_since_ = f.t;
+    hand_back_interval_ = hand_back_countdown_ = kHandBackSteps;
     ++hand_overs_;
     ++start_hand_overs_;
   }
@@ -58,14 +60,46 @@ void InvariantReducedSimulation::initialize() {
 void InvariantReducedSimulation::handOver(const CoupledState& full) {
   full_.restartFrom(full);
   full_since_ = full.t;
+  hand_back_interval_ = hand_back_countdown_ = kHandBackSteps;
   full_order_ = true;
   ++hand_overs_;
 }
 
+double InvariantReducedSimulation::predictedMinimumTension(double tension, const Eigen::Vector3d& top,
+                                                           const Eigen::Vector3d& end,
+                                                           const Eigen::Vector3d& top_velocity,
+                                                           const Eigen::Vector3d& end_velocity) const {
+  // The end mass on the rope as a spring-mass pendulum (header): quasi-static tension
+  // T_qs = (m_end + mu L) g.d + m_end |v_perp|^2 / l, the axial oscillation's force amplitude
+  // sqrt((T - T_qs)^2 + k m_eff v_a^2) with k = EA / L, m_eff = m_end + mu L / 3, v_a the
+  // end's axial velocity relative to the top less the hoist speed.
+  const CraneModel& m = full_.model();
+  const Eigen::Vector3d c = end - top;
+  const double l = c.norm();
+  if (!(l > 0.0)) return -std::numeric_limits<double>::infinity();
+  const Eigen::Vector3d d = c / l, v = end_velocity - top_velocity;
+  // The winch pays rope out at L' (hoist speed): the axial oscillation is what moves beyond it.
+  const double vr = v.dot(d), vp2 = std::max(0.0, v.squaredNorm() - vr * vr);
+  const double va = vr - full_.drives().hoistSpeed();
+  const double L = full_.ropeLength(), mu = m.rope.mass_per_length;
+  const double g_d = full_.rope().gravity().dot(d);
+  const double quasi_static = (m.end_mass + mu * L) * g_d + m.end_mass * vp2 / l;
+  const double k = m.rope.axial_stiffness / L, m_eff = m.end_mass + mu * L / 3.0;
+  const double dT = tension - quasi_static;
+  return quasi_static - std::sqrt(dT * dT + k * m_eff * va * va);
+}
+
 bool InvariantReducedSimulation::slack(const CoupledState& s, bool check_strain) const {
   if (!(weight_ > 0.0)) return false;
-  if (solver_->topTension(s) < kSlackTensionFraction * weight_) return true;
-  return check_strain && solver_->minStrain(s.q) < kSlackFraction * end_strain_;
+  const double T = solver_->topTension(s);
+  if (T < kSlackTensionFraction * weight_) return true;
+  if (!check_strain) return false;
+  if (solver_->minStrain(s.q) < kSlackFraction * end_strain_) return true;
+  const int last = full_.ropeNodes() - 1;
+  const double T_min = predictedMinimumTension(
+      T, s.q.head<3>(), solver_->nodePosition(s.q, last), s.v.head<3>(),
+      solver_->nodePosition(s.v, last));
+  return T_min < kSnatchTensionFraction * weight_;
 }
 
 double InvariantReducedSimulation::errorIndicator(const CoupledState& f) const {
@@ -97,6 +131,11 @@ bool InvariantReducedSimulation::tryHandBack() {
     for (int j = 0; j < full_.ropeNodes(); ++j)
       least = std::min(least, f.q.segment<3>(6 * j + 3).norm() - 1.0);
     if (least < kTautFraction * m.end_mass * m.scene.gravity / m.rope.axial_stiffness) return false;
+    const int last = 6 * (full_.ropeNodes() - 1);
+    const double T_min = predictedMinimumTension(full_.solver().topTension(f), f.q.head<3>(),
+                                                 f.q.segment<3>(last), f.v.head<3>(),
+                                                 f.v.segment<3>(last));
+    if (T_min < kCalmTensionFraction * weight_) return false;
   }
   const double pe = solver_->projectionError(f.q);
   if (pe > kHandBackTolerance) return false;
@@ -129,8 +168,13 @@ void InvariantReducedSimulation::step() {
   if (full_order_) {
     full_.step();
     ++full_order_steps_;
-    if (full_order_steps_ % kHandBackSteps == 0 && full_.time() - full_since_ >= kHandBackDwell) {
-      tryHandBack();
+    // Trials every kHandBackSteps steps after the dwell, the interval doubling after each
+    // refused trial up to kMaxHandBackInterval (a scene that stays violent costs nothing extra).
+    if (full_.time() - full_since_ >= kHandBackDwell && --hand_back_countdown_ <= 0) {
+      if (!tryHandBack()) {
+        hand_back_interval_ = std::min(2 * hand_back_interval_, kMaxHandBackInterval);
+        hand_back_countdown_ = hand_back_interval_;
+      }
     }
     return;
   }

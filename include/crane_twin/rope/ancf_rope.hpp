@@ -37,7 +37,7 @@ class AncfRope {
   const Eigen::VectorXd& gravityForce() const { return Fg_; }
 
   /// Hoisting by uniform rescaling (docs/model.md): every element's reference length becomes
-  /// length / elements; M and F_g are rebuilt (rope mass mu L exactly, same pattern). Throws
+  /// length / elements; M and F_g are updated in place (rope mass mu L exactly, same pattern). Throws
   /// std::invalid_argument for a non-positive length.
   void setLength(double length);
   /// Rescale a coordinate-like vector (q, v, q'') so the rope's geometry is unchanged under a
@@ -64,7 +64,10 @@ class AncfRope {
   Eigen::Vector3d gravity_;
   SparseMatrix M_;
   Eigen::VectorXd Fg_;
+  std::vector<double> unit_mass_, point_mass_;  ///< per entry of M_ (setLength)
+  std::vector<int> mass_exponent_;              ///< s_i + s_j per entry (0: l, 1: l^2, 2: l^3)
   void assembleMass();
+  void updateGravityForce();
 };
 
 /// Points r(x) of an ANCF rope with coordinates q (6 per node) and element length l, sampled

@@ -15,7 +15,8 @@
 //    held (what the basis leaves out), exceeds kIndicatorTolerance at a node.
 // A start the basis does not carry (the hand-back criteria below fail on the scene's initial
 // state: a stress-free rope, a velocity given to the payload alone) begins at full order.
-// At full order, every kHandBackSteps steps: the run comes back once the rope is taut again
+// At full order, after kHandBackDwell and then every kHandBackSteps steps (doubling after each
+// refused trial, up to kMaxHandBackInterval): the run comes back once the rope is taut again
 // (kTautFraction, kTautTensionFraction) and the projected state's indicator and position error
 // are under kHandBackTolerance. Hand-overs and the steps taken at full order are counted
 // (summary line, CSV column `full_order`, node diagnostics).
@@ -83,9 +84,23 @@ class InvariantReducedSimulation final : public Simulation {
   /// Steps between the error indicator's evaluations (a tangent assembly and a sparse LDL^T
   /// of the full rope: measured 1.4 ms at 120 elements, so 250 steps keep it near 5 us a step)
   /// and between the strain checks (O(m n_g)).
+  /// Snatch risk (checked with the strain): the tension the end mass's axial oscillation
+  /// about its quasi-static tension (swing included) will reach at its low point,
+  /// predictedMinimumTension; under kSnatchTensionFraction of the weight the rope is about to go
+  /// slack, and the reduced run hands over before it does (near slack the rope's axial waves,
+  /// which the basis carries only in part, decide the path); a hand-back needs it above
+  /// kCalmTensionFraction. Measured: the 60 deg release (its held-equilibrium tension 2 W drops
+  /// to 0.5 W at release and rings down to 0.1 W at 0.18 s) handed over at 0.18 s without it
+  /// and left 5.4 cm rope RMS error; a 30 deg release predicts 0.58 W and stays reduced.
+  static constexpr double kSnatchTensionFraction = 0.25, kCalmTensionFraction = 0.4;
+  /// The predicted low point [N] from the top tension, the top and end node positions and
+  /// velocities (world frame).
+  double predictedMinimumTension(double tension, const Eigen::Vector3d& top,
+                                 const Eigen::Vector3d& end, const Eigen::Vector3d& top_velocity,
+                                 const Eigen::Vector3d& end_velocity) const;
   static constexpr int kCheckSteps = 250;
   static constexpr int kStrainCheckSteps = 10;
-  static constexpr int kHandBackSteps = 20;
+  static constexpr int kHandBackSteps = 20, kMaxHandBackInterval = 640;
   static constexpr double kIndicatorTolerance = 2e-3;  ///< [m]
   /// Hand-back: largest node distance between the full state and its projection [m] (the
   /// waves a slack episode leaves on the rope that the basis drops), and the indicator bound.
@@ -113,6 +128,7 @@ class InvariantReducedSimulation final : public Simulation {
   long start_hand_overs_ = 0;
   double max_indicator_ = 0.0;
   double full_since_ = 0.0;  ///< time of the last hand-over [s]
+  int hand_back_interval_ = kHandBackSteps, hand_back_countdown_ = kHandBackSteps;
   mutable Eigen::SimplicialLDLT<SparseMatrix> indicator_ldlt_;
   mutable bool indicator_pattern_ = false;
 };
