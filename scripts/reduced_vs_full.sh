@@ -1,34 +1,44 @@
 #!/usr/bin/env bash
-# The default reduced rope against full order on the shipped scenes (docs/accuracy-vs-time.md,
-# "Operation"): for each line of the list (name scene duration [--set k=v ...]) both models at
-# the scene's own step, their wall times (crane_sim's summary), the speed-up, the reduced run's
-# hand-overs and the payload / rope RMS errors (crane_sim compare). One table row per scene.
+# The default reduced rope and the pendulum rope against full order on the shipped scenes
+# (docs/accuracy-vs-time.md, "Operation"): for each line of the list (name scene duration
+# [--set k=v ...]) the three models at the scene's own step; per model its wall time (crane_sim's
+# summary) and its payload, rope RMS and top-tension errors against full order (crane_sim
+# compare); for the reduced run also the speed-up and its hand-overs. One Markdown table row per
+# scene, in the list's order.
 #   scripts/reduced_vs_full.sh [LIST] [JOBS]     (defaults: config/operation_scenes.txt, 2)
+# CRANE_SIM overrides the binary (default build/core/crane_sim).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 LIST="${1:-$ROOT/config/operation_scenes.txt}"
 JOBS="${2:-2}"
 SIM="${CRANE_SIM:-$ROOT/build/core/crane_sim}"
 OUT="$(mktemp -d)"
+trap 'rm -rf "$OUT"' EXIT
 one() {
-  local name=$1 scene=$2 dur=$3
-  shift 3
-  for m in full reduced; do
+  local index=$1 name=$2 scene=$3 dur=$4
+  shift 4
+  local m
+  for m in full reduced pendulum; do
     "$SIM" run "$ROOT/config/scenes/$scene.yaml" --set duration="$dur" --set rope.model="$m" "$@" \
       --out "$OUT/${name}_$m.csv" --nodes "$OUT/${name}_${m}_nodes.csv" --quiet \
       > "$OUT/${name}_$m.log" 2>&1 || echo "exit=$?" >> "$OUT/${name}_$m.log"
   done
-  local wf wr ho cmp
-  wf=$(sed -n 's/^summary: wall_s=\([^ ]*\).*/\1/p' "$OUT/${name}_full.log")
-  wr=$(sed -n 's/^summary: wall_s=\([^ ]*\).*/\1/p' "$OUT/${name}_reduced.log")
+  wall() { sed -n 's/^summary: wall_s=\([^ ]*\).*/\1/p' "$OUT/${name}_$1.log"; }
+  errs() {
+    "$SIM" compare "$OUT/${name}_$1.csv" "$OUT/${name}_full.csv" \
+      --nodes-a "$OUT/${name}_$1_nodes.csv" --nodes-b "$OUT/${name}_full_nodes.csv" |
+      awk -F, '/^payload_error_max|^rope_rms_max|^tension_error_relative/ {printf "%.2g | ", $2}'
+  }
+  local wf wr wp ho
+  wf=$(wall full); wr=$(wall reduced); wp=$(wall pendulum)
   ho=$(sed -n 's/.*hand_overs=\([^ ]*\) full_order_steps=\(.*\)/\1 | \2/p' "$OUT/${name}_reduced.log")
-  cmp=$("$SIM" compare "$OUT/${name}_reduced.csv" "$OUT/${name}_full.csv" \
-        --nodes-a "$OUT/${name}_reduced_nodes.csv" --nodes-b "$OUT/${name}_full_nodes.csv" |
-        awk -F, '/payload_error_max|rope_rms_max/ {printf "%.2g | ", $2}')
-  echo "| $name | $dur | $wf | $wr | $(awk -v a="$wf" -v b="$wr" 'BEGIN{if (b>0) printf "%.1f", a/b}') | $ho | $cmp"
+  printf '%05d| %s | %s | %s | %s | %s | %s | %s%s | %s\n' "$index" "$name" "$dur" "$wf" "$wr" \
+    "$(awk -v a="$wf" -v b="$wr" 'BEGIN{if (b > 0) printf "%.1f", a / b}')" "$ho" "$(errs reduced)" \
+    "$wp" "$(errs pendulum)"
 }
 export -f one
 export ROOT SIM OUT
-echo "| scene | sim s | full wall s | reduced wall s | speed-up | hand-overs | full-order steps | payload error m | rope RMS error m |"
-echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"
-grep -v '^#' "$LIST" | grep . | xargs -P "$JOBS" -L1 bash -c 'one "$@"' _
+echo "| scene | sim s | full wall s | reduced wall s | speed-up | hand-overs | full-order steps | payload error m | rope RMS error m | tension error | pendulum wall s | pendulum payload error m | pendulum rope RMS m | pendulum tension error |"
+echo "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |"
+grep -v '^#' "$LIST" | grep . | awk '{print NR, $0}' | xargs -P "$JOBS" -L1 bash -c 'one "$@"' _ |
+  sort | cut -c6-

@@ -1,6 +1,8 @@
 // crane_sim as a user runs it: output formats of docs/cli.md and exit codes.
 #include <gtest/gtest.h>
 
+#include "crane_twin/simulation/invariant_reduced_simulation.hpp"
+
 #include <array>
 #include <cmath>
 #include <algorithm>
@@ -62,13 +64,24 @@ TEST(CraneSimCli, InfoHonoursOverrides) {
 }
 
 TEST(CraneSimCli, InfoSaysWhatARunIntegrates) {
-  // Combination 1: the reduced rope keeps mode_fraction 0.5 of its 726 DOF, i.e. 363
+  // Combination 1: the subdomain rope keeps mode_fraction 0.5 of its 726 DOF, i.e. 363
   // coordinates (360 modes + the 3 rigid translations, docs/model.md), and 100 structure modes;
+  // the default reduced rope integrates 3 coordinates per shape of the basis a run builds;
   // a rigid structure integrates none.
-  Result r = run("info " + kScene);
+  Result r = run("info " + kScene + " --set rope.reduction=subdomains");
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("integrated_structure_coordinates,100\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("integrated_rope_coordinates,363\n"), std::string::npos) << r.out;
+  r = run("info " + kScene);
+  ASSERT_EQ(r.status, 0) << r.out;
+  {
+    const crane_twin::InvariantReducedSimulation sim(
+        crane_twin::buildCraneModel(crane_twin::loadScene(kScene, {})));
+    EXPECT_NE(r.out.find("integrated_rope_coordinates," +
+                         std::to_string(3 * sim.basis().shapes()) + "\n"),
+              std::string::npos)
+        << r.out;
+  }
   EXPECT_NE(r.out.find("rope_bending,on\n"), std::string::npos);
   EXPECT_NE(r.out.find("slewing_inertial_loads,off\n"), std::string::npos);
   r = run("info " + kScene + " --set structure.model=rigid --set rope.model=full --set rope.bending=false"
@@ -277,7 +290,8 @@ TEST(CraneSimCli, ReducedRunCountsSubdomains) {
 TEST(CraneSimCli, CompareComputesTheSpecMetrics) {
   const std::string a = ::testing::TempDir() + "cmp_a.csv", b = ::testing::TempDir() + "cmp_b.csv";
   ASSERT_EQ(run("run " + kRope + " --set duration=0.1 --set rope.elements=6 --out " + a + " --quiet").status, 0);
-  // B: A with the payload moved by (0.3, 0.4, 0) at the second row: error 0.5 m, 0.5/60 relative.
+  // B: A with the payload moved by (0.3, 0.4, 0) and the top tension raised by 250 N at the second
+  // row: error 0.5 m, 0.5/60 relative, 250 N.
   {
     std::ifstream in(a);
     std::ofstream out(b);
@@ -289,6 +303,7 @@ TEST(CraneSimCli, CompareComputesTheSpecMetrics) {
         for (std::string x; std::getline(s, x, ',');) f.push_back(x);
         f[1] = std::to_string(std::stod(f[1]) + 0.3);
         f[2] = std::to_string(std::stod(f[2]) + 0.4);
+        f[16] = std::to_string(std::stod(f[16]) + 250.0);  // rope_top_tension
         line.clear();
         for (std::size_t k = 0; k < f.size(); ++k) line += (k ? "," : "") + f[k];
       }
@@ -305,6 +320,8 @@ TEST(CraneSimCli, CompareComputesTheSpecMetrics) {
   EXPECT_NEAR(at("payload_error_max"), 0.5, 1e-5);
   EXPECT_NEAR(at("payload_error_relative"), 0.5 / 60.0, 1e-6);
   EXPECT_EQ(at("cab_error_max"), 0.0);
+  EXPECT_NEAR(at("tension_error_max"), 250.0, 1e-3);
+  EXPECT_GT(at("tension_error_relative"), 0.0);
 }
 
 TEST(CraneSimCli, CompareRefusesMalformedCsv) {
@@ -368,8 +385,9 @@ TEST(CraneSimCli, QuickSweepWritesOneRowPerSetting) {
     EXPECT_EQ(row.find("nan"), std::string::npos) << row;
   }
   EXPECT_EQ(reference, 1);
-  // reference, full at 1 and 10 ms, reduced 10 modes x 2 deltas x 2 steps, pendulum at 10 ms
-  EXPECT_EQ(rows, 1 + 2 + 4 + 1);
+  // reference, full at 1 and 10 ms, subdomain-reduced 10 modes x 2 deltas x 2 steps, the
+  // invariant reduced rope at 1 and 10 ms, pendulum at 10 ms
+  EXPECT_EQ(rows, 1 + 2 + 4 + 2 + 1);
 }
 
 TEST(CraneSimCli, PhysicalWarningsReachTheCsvAndStderr) {

@@ -74,14 +74,14 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
     for (double d : deltas)
       for (double dt : steps) {
         g.push_back({"reduced",
-                     {"rope.model=reduced", "rope.mode_count=" + std::to_string(m),
+                     {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=" + std::to_string(m),
                       "rope.subdomain_delta=" + num(d), "time_step=" + num(dt)},
                      dt, m, d, scene.structure_modes, scene.structure_model, frame});
       }
   if (!quick) {
     for (double dt : {0.02, 0.05}) {
       g.push_back({"reduced",
-                   {"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_delta=0.05",
+                   {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=10", "rope.subdomain_delta=0.05",
                     "time_step=" + num(dt)},
                    dt, 10, 0.05, scene.structure_modes, scene.structure_model, frame});
     }
@@ -89,7 +89,7 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
   if (!quick && frame != "fixed") {
     for (double d : deltas) {
       g.push_back({"reduced",
-                   {"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_delta=" + num(d),
+                   {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=10", "rope.subdomain_delta=" + num(d),
                     "time_step=0.005", "rope.subdomain_frame=fixed"},
                    0.005, 10, d, scene.structure_modes, scene.structure_model, "fixed"});
     }
@@ -100,23 +100,28 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
     half.rope.mode_count = 0;
     half.rope.mode_fraction = 0.5;
     g.push_back({"reduced",
-                 {"rope.model=reduced", "rope.mode_count=0", "rope.mode_fraction=0.5",
+                 {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=0", "rope.mode_fraction=0.5",
                   "time_step=" + num(scene.time_step)},
                  scene.time_step, keptRopeModes(half), scene.rope.subdomain_delta,
                  scene.structure_modes, scene.structure_model, frame});
     if (frame != "fixed") {
       g.push_back({"reduced",
-                   {"rope.model=reduced", "rope.mode_count=0", "rope.mode_fraction=0.5",
+                   {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=0", "rope.mode_fraction=0.5",
                     "time_step=" + num(scene.time_step), "rope.subdomain_frame=fixed"},
                    scene.time_step, keptRopeModes(half), scene.rope.subdomain_delta,
                    scene.structure_modes, scene.structure_model, "fixed"});
     }
     if (scene.crane && scene.structure_model == "modal") {
       g.push_back({"reduced",
-                   {"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_delta=0.2",
+                   {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=10", "rope.subdomain_delta=0.2",
                     "time_step=0.005", "structure.modes=20"},
                    0.005, 10, 0.2, 20, "modal", frame});
     }
+  }
+  // The default reduced rope (rotation-invariant basis, docs/model.md) at the full model's steps.
+  for (double dt : quick ? std::vector<double>{0.001, 0.01} : std::vector<double>{0.001, 0.005, 0.01, 0.05}) {
+    g.push_back({"invariant", {"rope.model=reduced", "rope.reduction=invariant", "time_step=" + num(dt)},
+                 dt, 0, 0.0, scene.structure_modes, scene.structure_model});
   }
   // The fidelity ladder: the pendulum rope, and the rigid structure under each rope model.
   auto pendulum = [&](double dt, int structureModes, const std::string& structure) {
@@ -136,7 +141,7 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
     g.push_back({"full", {"rope.model=full", "time_step=0.01", "structure.model=rigid"}, 0.01, 0,
                  0.0, 0, "rigid"});
     g.push_back({"reduced",
-                 {"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_delta=0.2",
+                 {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=10", "rope.subdomain_delta=0.2",
                   "time_step=0.005", "structure.model=rigid"},
                  0.005, 10, 0.2, 0, "rigid", frame});
   }

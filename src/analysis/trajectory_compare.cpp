@@ -76,13 +76,14 @@ std::vector<std::vector<double>> readColumns(const std::string& file,
 Trajectory readTrajectory(const std::string& series_csv, const std::string& nodes_csv) {
   const auto rows = readColumns(
       series_csv, {"t", "payload_x", "payload_y", "payload_z", "cab_dx", "cab_dy", "cab_dz",
-                   "jib_tip_dx", "jib_tip_dy", "jib_tip_dz", "rope_length"});
+                   "jib_tip_dx", "jib_tip_dy", "jib_tip_dz", "rope_length", "rope_top_tension"});
   Trajectory tr;
   for (const auto& r : rows) {
     tr.t.push_back(r[0]);
     tr.payload.emplace_back(r[1], r[2], r[3]);
     tr.cab.emplace_back(r[4], r[5], r[6]);
     tr.jib_tip.emplace_back(r[7], r[8], r[9]);
+    tr.tension.push_back(r[11]);
   }
   tr.rope_length = rows.front()[10];
   if (nodes_csv.empty()) return tr;
@@ -127,6 +128,7 @@ ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b) {
   for (std::size_t i = 0; i < b.t.size(); ++i) bIndex[std::lround(b.t[i] * 1e9)] = i;
   const bool withNodes = !a.nodes.empty() && !b.nodes.empty();
   ErrorMetrics m;
+  double tension_scale = 0.0;
   if (withNodes) m.rope_rms_max = 0.0;
   for (std::size_t i = 0; i < a.t.size(); ++i) {
     const auto it = bIndex.find(std::lround(a.t[i] * 1e9));
@@ -136,6 +138,10 @@ ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b) {
     m.payload_max = std::max(m.payload_max, (a.payload[i] - b.payload[j]).norm());
     m.cab_max = std::max(m.cab_max, (a.cab[i] - b.cab[j]).norm());
     m.jib_tip_max = std::max(m.jib_tip_max, (a.jib_tip[i] - b.jib_tip[j]).norm());
+    if (i < a.tension.size() && j < b.tension.size()) {
+      m.tension_max = std::max(m.tension_max, std::abs(a.tension[i] - b.tension[j]));
+      tension_scale = std::max(tension_scale, std::abs(b.tension[j]));
+    }
     if (withNodes) {
       const std::size_t n = std::max(a.nodes[i].size(), b.nodes[j].size());
       const auto ra = a.nodes[i].size() == n ? a.nodes[i] : resampleRope(a.nodes[i], n);
@@ -149,6 +155,7 @@ ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b) {
   const double L = b.rope_length > 0.0 ? b.rope_length : a.rope_length;
   m.rope_length = L;
   m.payload_relative = L > 0.0 ? m.payload_max / L : 0.0;
+  m.tension_relative = tension_scale > 0.0 ? m.tension_max / tension_scale : 0.0;
   return m;
 }
 

@@ -25,6 +25,15 @@ InvariantBasisSettings invariantBasisSettings(const Scene& sc) {
   return s;
 }
 
+int invariantRopeCoordinates(const CraneModel& m) {
+  const Scene& sc = m.scene;
+  const AncfRope rope(sc.rope.elements, sc.rope.length, m.rope.mass_per_length,
+                      m.rope.axial_stiffness, m.rope.bending_stiffness, m.end_mass,
+                      Eigen::Vector3d(0.0, 0.0, -sc.gravity),
+                      sc.crane ? sc.crane->trolley_mass : 0.0);
+  return InvariantRopeBasis(rope, invariantBasisSettings(sc)).coordinates();
+}
+
 InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model) : full_(model) {
   const Scene& sc = full_.model().scene;
   // The basis of the rope at its scene length (CraneSimulation built it there).

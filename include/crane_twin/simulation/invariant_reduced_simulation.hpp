@@ -34,6 +34,8 @@ namespace crane_twin {
 /// Basis sizes of a scene: rope.mode_count transverse modes when > 0, else the default
 /// (InvariantBasisSettings).
 InvariantBasisSettings invariantBasisSettings(const Scene& scene);
+/// Reduced coordinates (3 per shape) the scene's invariant basis has (builds the basis alone).
+int invariantRopeCoordinates(const CraneModel& model);
 
 class InvariantReducedSimulation final : public Simulation {
  public:
