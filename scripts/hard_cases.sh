@@ -15,27 +15,28 @@ run() {  # name scene [--set ...]
   echo "exit_status=$?" >>"$OUT/$name.log"
 }
 run swing_30deg hard_swing_30deg.yaml
-run swing_30deg_reduced hard_swing_30deg.yaml --set rope.model=reduced --set rope.mode_count=10
+run swing_30deg_reduced hard_swing_30deg.yaml --set rope.model=reduced
 run swing_60deg hard_swing_60deg.yaml
-run swing_60deg_reduced hard_swing_60deg.yaml --set rope.model=reduced --set rope.mode_count=10
+run swing_60deg_reduced hard_swing_60deg.yaml --set rope.model=reduced
 run short_rope_2m hard_short_rope_2m.yaml
 run slack_throw hard_slack_throw.yaml
 run stress_free_heavy hard_stress_free_heavy.yaml
 run emergency_stop_slew hard_emergency_stop_slew.yaml
-run emergency_stop_slew_reduced hard_emergency_stop_slew.yaml --set rope.model=reduced --set rope.mode_count=10
+run emergency_stop_slew_reduced hard_emergency_stop_slew.yaml --set rope.model=reduced
 run emergency_stop_trolley hard_emergency_stop_trolley.yaml
 run hoist_60_3_60 hard_hoist_60_3_60.yaml
-run hoist_60_3_60_reduced hard_hoist_60_3_60.yaml --set rope.model=reduced --set rope.mode_count=10
+run hoist_60_3_60_reduced hard_hoist_60_3_60.yaml --set rope.model=reduced
 run one_hour_undamped hard_one_hour_undamped.yaml
 run large_step hard_large_step.yaml
-run large_step_reduced hard_large_step.yaml --set rope.model=reduced --set rope.mode_count=10
+run large_step_reduced hard_large_step.yaml --set rope.model=reduced
 run random_commands hard_random_commands.yaml
-run random_commands_reduced hard_random_commands.yaml --set rope.model=reduced --set rope.mode_count=10
+run random_commands_reduced hard_random_commands.yaml --set rope.model=reduced
 run falling_rope hard_falling_rope.yaml
-# The reduced rope in the chord's frame (the paper scenes' setting) on the swings and the large step.
+# The paper's subdomains in the chord's frame (the paper scenes' setting) on the swings and the
+# large step.
 for c in swing_30deg swing_60deg large_step; do
   run "${c}_reduced_corotational" "hard_$c.yaml" --set rope.model=reduced --set rope.mode_count=10 \
-    --set rope.subdomain_frame=corotational
+    --set rope.reduction=subdomains --set rope.subdomain_frame=corotational
 done
 # The pendulum rope (the ladder's cheapest rung) on the cases where a straight bar makes sense.
 for c in swing_60deg short_rope_2m slack_throw emergency_stop_slew emergency_stop_trolley \

@@ -65,6 +65,7 @@ NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
   }
   optionalParam(pnh, "real_time_factor", s.real_time_factor, "a number");
   optionalParam(pnh, "publish_rate", s.publish_rate, "a number");
+  optionalParam(pnh, "structure_marker_rate", s.structure_marker_rate, "a number");
   optionalParam(pnh, "command_timeout", s.command_timeout, "a number");
   optionalParam(pnh, "publish_clock", s.publish_clock, "true or false");
   optionalParam(pnh, "duration", s.duration, "a number");
@@ -75,6 +76,7 @@ NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
   optionalParam(pnh, "rope_samples_per_element", s.snapshot.samples_per_element, "an integer");
   requireFinite("real_time_factor", s.real_time_factor, 0.0, false);
   requireFinite("publish_rate", s.publish_rate, 0.0, true);
+  requireFinite("structure_marker_rate", s.structure_marker_rate, 0.0, true);
   requireFinite("command_timeout", s.command_timeout, 0.0, false);
   requireFinite("displacement_scale", s.snapshot.displacement_scale, 0.0, false);
   if (!std::isfinite(s.duration)) throw InputError("parameter '~duration' must be finite");
@@ -283,7 +285,14 @@ void CraneSimNode::publish() {
   last_publish_sim_ = t;
   last_publish_wall_ = now;
 
-  const CraneSnapshot s = snapshotOf(*sim_, settings_.snapshot);
+  // The structure's segments at most structure_marker_rate times per wall second (rviz keeps
+  // the last marker of an id); the first publication always carries them.
+  SnapshotOptions options = settings_.snapshot;
+  options.structure_segments =
+      last_structure_wall_.isZero() ||
+      (now - last_structure_wall_).toSec() >= 1.0 / settings_.structure_marker_rate;
+  if (options.structure_segments) last_structure_wall_ = now;
+  const CraneSnapshot s = snapshotOf(*sim_, options);
   warnings_seen_ |= s.series.warnings;
   if (settings_.publish_clock) {
     rosgraph_msgs::Clock c;

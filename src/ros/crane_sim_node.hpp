@@ -28,6 +28,9 @@ struct NodeSettings {
   std::vector<std::string> overrides;  ///< ~overrides: "key=value" like crane_sim's --set
   double real_time_factor = 1.0;       ///< 0: as fast as possible (drives /clock)
   double publish_rate = 30.0;          ///< Hz of simulated time
+  /// Hz of wall time for the deformed structure's marker (thousands of points): when running
+  /// faster than real time it would otherwise dominate the publishing (docs/ros.md).
+  double structure_marker_rate = 10.0;
   double command_timeout = 0.5;        ///< s of simulated time, 0: never
   bool publish_clock = false;          ///< forced on when real_time_factor is 0
   double duration = -1.0;              ///< s; < 0: the scene's; 0: run until shut down
@@ -74,6 +77,7 @@ class CraneSimNode {
   long steps_since_publish_ = 0;
   double last_publish_sim_ = 0.0;
   ros::WallTime last_publish_wall_;
+  ros::WallTime last_structure_wall_;  ///< last publication of the structure's marker
   double last_step_cost_ = 0.0, last_rtf_ = 0.0;
   long steps_ = 0, rejected_ = 0, overruns_ = 0;
   int warnings_seen_ = 0;
