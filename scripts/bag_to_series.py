@@ -4,7 +4,7 @@
   bag_to_series.py BAG [--series OUT.csv] [--commands OUT.yaml] [--stats]
 
 --series    crane/state as a docs/cli.md time-series CSV (crane_sim compare and plot_series.py
-            read it);
+            read it; full_order_steps from the node's latest /diagnostics, 1 Hz);
 --commands  crane/command_applied as a scene `commands:` schedule (YAML flow list, simulated
             times), so `crane_sim run SCENE --set "commands=$(cat OUT.yaml)"` repeats the run;
 --stats     median step cost, real-time factor and the count of states and commands.
@@ -21,13 +21,13 @@ COLUMNS = ("t,payload_x,payload_y,payload_z,payload_vx,payload_vy,payload_vz,cab
            "subdomains,tension_ratio,load_chart_ratio,warnings,full_order_steps")
 
 
-def row(s):
+def row(s, full_order_steps):
     v = lambda p: [p.x, p.y, p.z]  # noqa: E731
     values = ([s.t] + v(s.payload) + v(s.payload_velocity) + v(s.cab_displacement) +
               v(s.jib_tip_displacement) + v(s.trolley) +
               [s.rope_top_tension, s.rope_length, s.slew_angle, s.trolley_radius, s.energy,
                s.constraint_error, s.subdomains, s.tension_ratio, s.load_chart_ratio,
-               s.warnings, s.full_order_steps])
+               s.warnings, full_order_steps])
     return ",".join(repr(float(x)) if not isinstance(x, int) else str(x) for x in values)
 
 
@@ -43,18 +43,30 @@ def main():
         bag = rosbag.Bag(a.bag)
     except Exception as e:  # rosbag raises several types for a bad file
         sys.exit("bag_to_series: %s: %s" % (a.bag, e))
-    states, commands = [], []
-    for topic, msg, _ in bag.read_messages(topics=["/crane/state", "/crane/command_applied"]):
-        (states if topic == "/crane/state" else commands).append(msg)
+    # full_order_steps is not in crane/state: it comes from the node's latest /diagnostics
+    # (1 Hz) before each state, 0 before the first.
+    states, commands, steps = [], [], 0
+    for topic, msg, _ in bag.read_messages(
+            topics=["/crane/state", "/crane/command_applied", "/diagnostics"]):
+        if topic == "/diagnostics":
+            for status in msg.status:
+                for kv in status.values:
+                    if kv.key == "full_order_steps":
+                        steps = int(float(kv.value))
+        elif topic == "/crane/state":
+            states.append((msg, steps))
+        else:
+            commands.append(msg)
     bag.close()
     if not states:
         sys.exit("bag_to_series: %s holds no /crane/state" % a.bag)
-    states.sort(key=lambda s: s.t)
+    states.sort(key=lambda s: s[0].t)
     if a.series:
         with open(a.series, "w") as f:
             f.write(COLUMNS + "\n")
-            for s in states:
-                f.write(row(s) + "\n")
+            for s, steps in states:
+                f.write(row(s, steps) + "\n")
+    states = [s for s, _ in states]
     if a.commands:
         entries = ["{t: %r, slew_rate: %r, trolley_speed: %r, hoist_speed: %r}" %
                    (c.header.stamp.to_sec(), c.slew_rate, c.trolley_speed, c.hoist_speed)

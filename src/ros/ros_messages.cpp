@@ -127,7 +127,6 @@ CraneState toStateMessage(const CraneSnapshot& s, const ros::Time& stamp, double
   m.tension_ratio = v.tension_ratio;
   m.load_chart_ratio = v.load_chart_ratio;
   m.warnings = v.warnings;
-  m.full_order_steps = v.full_order_steps;
   m.step_compute_time = step_cost;
   m.real_time_factor = real_time_factor;
   m.model = model;
