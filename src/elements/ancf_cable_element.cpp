@@ -97,15 +97,22 @@ void ancfStrainCurvature(const Vector12& e, double xi, double l, double& eps, do
   kappa = a.cross(b).norm() / (g * g * g);
 }
 
+double ancfCableEnergyDensity(double EA, double EI, const Eigen::Vector3d& a,
+                             const Eigen::Vector3d& b) {
+  const double g = a.norm();
+  const double eps = g - 1.0, kappa = a.cross(b).norm() / (g * g * g);
+  return 0.5 * (EA * eps * eps + EI * kappa * kappa);
+}
+
 double ancfElasticEnergy(const AncfCableProperties& p, const Vector12& e) {
   const GaussRule& gr = gaussRule(p.gauss_points);
   const Eigen::VectorXd &xg = gr.x, &wg = gr.w;
   double U = 0.0;
   for (int q = 0; q < xg.size(); ++q) {
-    double eps, kappa;
-    ancfStrainCurvature(e, xg(q), p.length, eps, kappa);
-    U += wg(q) * p.length * 0.5 *
-         (p.axial_stiffness * eps * eps + p.bending_stiffness * kappa * kappa);
+    U += wg(q) * p.length *
+         ancfCableEnergyDensity(p.axial_stiffness, p.bending_stiffness,
+                                combine(ancfShapeDx(xg(q), p.length), e),
+                                combine(ancfShapeDxx(xg(q), p.length), e));
   }
   return U;
 }

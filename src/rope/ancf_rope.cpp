@@ -1,6 +1,8 @@
 #include "crane_twin/rope/ancf_rope.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace crane_twin {
@@ -30,6 +32,18 @@ void AncfRope::setLength(double length) {
   for (Eigen::Index i = 0; i < M_.nonZeros(); ++i)
     v[i] = unit_mass_[i] * powers[mass_exponent_[i]] + point_mass_[i];
   updateGravityForce();
+}
+
+double AncfRope::minNodalStrain(const Eigen::VectorXd& q) {
+  double least = std::numeric_limits<double>::infinity();
+  for (int j = 0; 6 * j < q.size(); ++j) least = std::min(least, q.segment<3>(6 * j + 3).norm() - 1.0);
+  return least;
+}
+
+double AncfRope::kineticEnergyRelativeToTop(const Eigen::VectorXd& v) const {
+  Eigen::VectorXd w = v;
+  for (int j = 0; j < nodes(); ++j) w.segment<3>(6 * j) -= v.head<3>();
+  return 0.5 * w.dot(M_ * w);
 }
 
 void AncfRope::rescaleSlopes(Eigen::VectorXd& x, double from, double to) {

@@ -176,19 +176,19 @@ Eigen::VectorXd InvariantRopeBasis::projectForce(const Eigen::VectorXd& x, doubl
   return Eigen::Map<const Eigen::VectorXd>(Y.data(), Y.size());
 }
 
-Eigen::MatrixXd InvariantRopeBasis::scalarMass(const SparseMatrix& M, double L) const {
-  const Eigen::MatrixXd P = scalarRows(L);
-  return P.transpose() * (scalarBlock(M, 0) * P);
+InvariantRopeBasis::Projection::Projection(const InvariantRopeBasis& basis, const SparseMatrix& M,
+                                           double L) {
+  const Eigen::MatrixXd P = basis.scalarRows(L);
+  MsP_ = scalarBlock(M, 0) * P;
+  Mr_ = P.transpose() * MsP_;
+  ldlt_.compute(Mr_);
 }
 
-Eigen::VectorXd InvariantRopeBasis::project(const Eigen::VectorXd& x, const SparseMatrix& M,
-                                            double L) const {
-  const Eigen::MatrixXd P = scalarRows(L);
-  const Eigen::MatrixXd MsP = scalarBlock(M, 0) * P;
-  const Eigen::MatrixXd Mr = P.transpose() * MsP;
-  const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> X(x.data(), 3, 2 * nodes());
-  const Eigen::MatrixXd rhs = X * MsP;  // 3 x m
-  const Eigen::MatrixXd Y = Mr.ldlt().solve(rhs.transpose()).transpose();
+Eigen::VectorXd InvariantRopeBasis::Projection::operator()(const Eigen::VectorXd& x) const {
+  // x as 3 x 2(N+1); B^T M x = vec(X M_s Psi), then M_rs^-1 from the right.
+  const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> X(x.data(), 3, MsP_.rows());
+  const Eigen::MatrixXd rhs = X * MsP_;  // 3 x m
+  const Eigen::MatrixXd Y = ldlt_.solve(rhs.transpose()).transpose();
   return Eigen::Map<const Eigen::VectorXd>(Y.data(), Y.size());
 }
 

@@ -20,14 +20,17 @@ const CraneModel& ancfRopeModel(const CraneModel& m) {
 }
 }  // namespace
 
+AncfRope sceneRope(const CraneModel& m) {
+  return AncfRope(m.scene.rope.elements, m.scene.rope.length, m.rope.mass_per_length,
+                  m.rope.axial_stiffness, m.rope.bending_stiffness, m.end_mass,
+                  m.gravityVector(), m.trolleyMass());
+}
+
 CraneSimulation::CraneSimulation(const CraneModel& m) : SupportedRopeSimulation(ancfRopeModel(m)) {
   // Everything below refers to the own copy model_ (the support keeps references into it).
   const CraneModel& model = model_;
   const Scene& sc = model.scene;
-  rope_ = std::make_unique<AncfRope>(sc.rope.elements, sc.rope.length,
-                                     model.rope.mass_per_length, model.rope.axial_stiffness,
-                                     model.rope.bending_stiffness, model.end_mass,
-                                     gravityVector(), trolleyMass());
+  rope_ = std::make_unique<AncfRope>(sceneRope(model));
   solver_ = std::make_unique<FullOrderSolver>(*rope_, *support_, GeneralizedAlpha::forScene(sc),
                                               sc.time_step);
   solver_->setRopeDamping(sc.rope.damping);

@@ -26,12 +26,7 @@ InvariantBasisSettings invariantBasisSettings(const Scene& sc) {
 }
 
 int invariantRopeCoordinates(const CraneModel& m) {
-  const Scene& sc = m.scene;
-  const AncfRope rope(sc.rope.elements, sc.rope.length, m.rope.mass_per_length,
-                      m.rope.axial_stiffness, m.rope.bending_stiffness, m.end_mass,
-                      Eigen::Vector3d(0.0, 0.0, -sc.gravity),
-                      sc.crane ? sc.crane->trolley_mass : 0.0);
-  return InvariantRopeBasis(rope, invariantBasisSettings(sc)).coordinates();
+  return InvariantRopeBasis(sceneRope(m), invariantBasisSettings(m.scene)).coordinates();
 }
 
 InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model) : full_(model) {
@@ -58,10 +53,7 @@ void InvariantReducedSimulation::initialize() {
   // A start the basis cannot carry (a stress-free rope, a velocity given to the payload alone)
   // runs at full order until the hand-back criteria hold.
   if (!tryHandBack()) {
-    full_order_ = true;
-    full_since_ = f.t;
-    hand_back_interval_ = hand_back_countdown_ = kHandBackSteps;
-    ++hand_overs_;
+    handOver(f);
     ++start_hand_overs_;
   }
 }
@@ -133,15 +125,12 @@ double InvariantReducedSimulation::errorIndicator(const CoupledState& f) const {
 
 bool InvariantReducedSimulation::tryHandBack() {
   const CoupledState& f = full_.state();
-  const CraneModel& m = full_.model();
   if (weight_ > 0.0) {
-    if (full_.solver().topTension(f) < kTautTensionFraction * weight_) return false;
-    double least = 1e300;
-    for (int j = 0; j < full_.ropeNodes(); ++j)
-      least = std::min(least, f.q.segment<3>(6 * j + 3).norm() - 1.0);
-    if (least < kTautFraction * m.end_mass * m.scene.gravity / m.rope.axial_stiffness) return false;
+    const double T = full_.solver().topTension(f);
+    if (T < kTautTensionFraction * weight_) return false;
+    if (AncfRope::minNodalStrain(f.q) < kTautFraction * end_strain_) return false;
     const int last = 6 * (full_.ropeNodes() - 1);
-    const double T_min = predictedMinimumTension(full_.solver().topTension(f), f.q.head<3>(),
+    const double T_min = predictedMinimumTension(T, f.q.head<3>(),
                                                  f.q.segment<3>(last), f.v.head<3>(),
                                                  f.v.segment<3>(last));
     if (T_min < kCalmTensionFraction * weight_) return false;
@@ -157,14 +146,10 @@ bool InvariantReducedSimulation::tryHandBack() {
   // The energy the projection drops or adds (kinetic relative to the top, and strain) against
   // the rope's own: a hand-back that loses energy shifts the swing's period for good.
   const CoupledState e = solver_->expand(r);
-  const SparseMatrix& M = full_.rope().massMatrix();
-  auto relative = [&](const Eigen::VectorXd& v) {
-    Eigen::VectorXd w = v;
-    for (int j = 0; j < full_.ropeNodes(); ++j) w.segment<3>(6 * j) -= v.head<3>();
-    return 0.5 * w.dot(M * w);
-  };
-  const double Tf = relative(f.v), Uf = full_.rope().elasticEnergy(f.q);
-  const double dE = std::abs(Tf - relative(e.v)) + std::abs(Uf - full_.rope().elasticEnergy(e.q));
+  const AncfRope& rope = full_.rope();
+  const double Tf = rope.kineticEnergyRelativeToTop(f.v), Uf = rope.elasticEnergy(f.q);
+  const double dE = std::abs(Tf - rope.kineticEnergyRelativeToTop(e.v)) +
+                    std::abs(Uf - rope.elasticEnergy(e.q));
   if (!(dE < kHandBackEnergy * (Tf + Uf))) return false;
   const double ind = errorIndicator(e);
   if (!(ind < kHandBackTolerance)) return false;
@@ -207,10 +192,11 @@ void InvariantReducedSimulation::step() {
     return;
   }
   if (steps_ % kCheckSteps == 0) {
-    const double e = errorIndicator(solver_->expand(state_));
+    const CoupledState f = solver_->expand(state_);
+    const double e = errorIndicator(f);
     max_indicator_ = std::max(max_indicator_, e);
     if (!(e < kIndicatorTolerance)) {
-      handOver(solver_->expand(state_));
+      handOver(f);
       ++indicator_hand_overs_;
     }
   }

@@ -10,7 +10,7 @@ PendulumCraneSimulation::PendulumCraneSimulation(const CraneModel& m)
   const Scene& sc = model_.scene;
   rope_ = std::make_unique<PendulumRope>(sc.rope.length, model_.rope.mass_per_length,
                                          model_.rope.axial_stiffness, model_.end_mass,
-                                         gravityVector(), trolleyMass());
+                                         model_.gravityVector(), model_.trolleyMass());
   solver_ = std::make_unique<PendulumSolver>(*rope_, *support_, GeneralizedAlpha::forScene(sc),
                                              sc.time_step);
   solver_->setRopeDamping(sc.rope.damping);

@@ -73,9 +73,7 @@ void ReducedCraneSimulation::step() {
     ++full_order_steps_;
     // Taut again everywhere: every node's axial strain |r_x| - 1 above kTautFraction of the
     // static strain under the end mass alone (the least-loaded point of a hanging rope).
-    const Eigen::VectorXd& q = full_.state().q;
-    double least = 1e300;
-    for (int j = 0; j < full_.ropeNodes(); ++j) least = std::min(least, q.segment<3>(6 * j + 3).norm() - 1.0);
+    const double least = AncfRope::minNodalStrain(full_.state().q);
     // A slack episode while the hoist moves stays at full order until it stops (the length
     // changes every step then; measured in docs/model.md).
     if (least > kTautFraction * end_strain_ &&
@@ -93,9 +91,7 @@ void ReducedCraneSimulation::step() {
         return;
       }
       const double lost = solver_->statistics().projection_energy_loss - before;
-      Eigen::VectorXd vr = f.v;
-      for (int j = 0; j < full_.ropeNodes(); ++j) vr.segment<3>(6 * j) -= f.v.head<3>();
-      const double kinetic = 0.5 * vr.dot(full_.rope().massMatrix() * vr);
+      const double kinetic = full_.rope().kineticEnergyRelativeToTop(f.v);
       if (!(lost > kHandBackEnergyLoss * kinetic)) {
         full_order_ = false;
       } else {

@@ -51,14 +51,6 @@ std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
 SupportedRopeSimulation::SupportedRopeSimulation(const CraneModel& model)
     : model_(model), drives_(model_.scene), support_(makeRopeSupport(model_)) {}
 
-double SupportedRopeSimulation::trolleyMass() const {
-  return model_.scene.crane ? model_.scene.crane->trolley_mass : 0.0;
-}
-
-Eigen::Vector3d SupportedRopeSimulation::gravityVector() const {
-  return Eigen::Vector3d(0.0, 0.0, -model_.scene.gravity);
-}
-
 void SupportedRopeSimulation::resetDrivesAndPose() {
   const Scene& sc = model_.scene;
   drives_.reset();

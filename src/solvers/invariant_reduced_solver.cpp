@@ -14,7 +14,7 @@ namespace crane_twin {
 namespace {
 using Matrix3X = Eigen::Matrix<double, 3, Eigen::Dynamic>;
 
-// (Y (x) I3) applied as a 3 x m matrix product: vec(X S) for x = vec(X), S symmetric m x m.
+// (S (x) I3) x as a 3 x m matrix product: vec(X S) for x = vec(X), S symmetric m x m.
 Eigen::VectorXd kronTimes(const Eigen::MatrixXd& S, const Eigen::VectorXd& x) {
   const Eigen::Map<const Matrix3X> X(x.data(), 3, S.rows());
   const Matrix3X Y = X * S;
@@ -80,7 +80,7 @@ InvariantReducedSolver::InvariantReducedSolver(const AncfRope& rope,
   psi_end_ = P.row(N);
   // The rope's own mass in xi-units is mu L times a constant matrix (docs/model.md).
   const double L = rope.length(), mu = rope.element().mass_per_length;
-  mass_hat_ = (basis.scalarMass(rope.massMatrix(), L) - rope.topMass() * psi_top_.transpose() * psi_top_ -
+  mass_hat_ = (InvariantRopeBasis::Projection(basis, rope.massMatrix(), L).scalarMass() - rope.topMass() * psi_top_.transpose() * psi_top_ -
                rope.endMass() * psi_end_.transpose() * psi_end_) /
               (mu * L);
   refreshLength();
@@ -151,11 +151,8 @@ double InvariantReducedSolver::elasticEnergy(const Eigen::VectorXd& y) const {
   const Matrix3X Rx = A * D1_ / L_;
   const Matrix3X Rxx = A * D2_ / (L_ * L_);
   double U = 0.0;
-  for (int g = 0; g < w_.size(); ++g) {
-    const double gx = Rx.col(g).norm();
-    const double kappa = Rx.col(g).cross(Rxx.col(g)).norm() / (gx * gx * gx);
-    U += w_(g) * L_ * 0.5 * (EA * (gx - 1.0) * (gx - 1.0) + EI * kappa * kappa);
-  }
+  for (int g = 0; g < w_.size(); ++g)
+    U += w_(g) * L_ * ancfCableEnergyDensity(EA, EI, Rx.col(g), Rxx.col(g));
   return U;
 }
 
@@ -259,15 +256,23 @@ bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why
   return ok;
 }
 
+const InvariantRopeBasis::Projection& InvariantReducedSolver::projection() const {
+  if (!projection_ || projection_length_ != L_) {
+    projection_.emplace(basis_, rope_.massMatrix(), L_);
+    projection_length_ = L_;
+  }
+  return *projection_;
+}
+
 CoupledState InvariantReducedSolver::project(const CoupledState& full) const {
+  const InvariantRopeBasis::Projection& P = projection();
   CoupledState r = full;
-  const SparseMatrix& M = rope_.massMatrix();
-  r.q = basis_.project(full.q, M, L_);
+  r.q = P(full.q);
   r.q.head<3>() = full.q.head<3>();  // psi_k(0) = delta_k0: the top node exactly
-  r.v = basis_.project(full.v, M, L_);
+  r.v = P(full.v);
   r.v.head<3>() = full.v.head<3>();
-  r.qdd = basis_.project(full.qdd, M, L_);
-  r.a = full.a.size() == full.q.size() ? basis_.project(full.a, M, L_) : r.qdd;
+  r.qdd = P(full.qdd);
+  r.a = full.a.size() == full.q.size() ? P(full.a) : r.qdd;
   return r;
 }
 
@@ -281,7 +286,7 @@ CoupledState InvariantReducedSolver::expand(const CoupledState& reduced) const {
 }
 
 double InvariantReducedSolver::projectionError(const Eigen::VectorXd& q) const {
-  const Eigen::VectorXd y = basis_.project(q, rope_.massMatrix(), L_);
+  const Eigen::VectorXd y = projection()(q);
   double e = 0.0;
   for (int j = 0; j < rope_.nodes(); ++j)
     e = std::max(e, (basis_.nodePosition(y, j) - q.segment<3>(6 * j)).norm());

@@ -72,6 +72,9 @@ struct CablePointDerivatives {
 };
 void ancfCablePoint(double EA, double EI, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                     bool hessian, CablePointDerivatives& d);
+/// The density phi(a, b) itself [J/m] (what ancfCablePoint differentiates).
+double ancfCableEnergyDensity(double EA, double EI, const Eigen::Vector3d& a,
+                             const Eigen::Vector3d& b);
 
 /// Axial strain eps and curvature kappa at xi (for output and tests).
 void ancfStrainCurvature(const Vector12& e, double xi, double l, double& eps, double& kappa);

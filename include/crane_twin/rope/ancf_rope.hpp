@@ -54,6 +54,11 @@ class AncfRope {
   static Eigen::Vector3d nodePosition(const Eigen::VectorXd& q, int node) {
     return q.segment<3>(6 * node);
   }
+  /// Smallest nodal axial strain min_j |r_j,x| - 1 (the slack checks of the reduced models).
+  static double minNodalStrain(const Eigen::VectorXd& q);
+  /// Kinetic energy of the velocities v relative to the top node's, 1/2 w^T M w with
+  /// w_j = v_j - v_0 on every node position [J] (what a projection may drop).
+  double kineticEnergyRelativeToTop(const Eigen::VectorXd& v) const;
   /// Straight, unstretched rope from `top` along unit direction d.
   Eigen::VectorXd straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d) const;
 

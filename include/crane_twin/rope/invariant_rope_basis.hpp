@@ -63,11 +63,20 @@ class InvariantRopeBasis {
   Eigen::Vector3d nodePosition(const Eigen::VectorXd& y, int j) const;
   /// B(L)^T x for a full-coordinate force x.
   Eigen::VectorXd projectForce(const Eigen::VectorXd& x, double L) const;
-  /// The M-orthogonal projection of full coordinates x: solves M_r y = B^T M x, with M the
-  /// rope's mass matrix at length L (AncfRope::massMatrix) and M_r = B^T M B.
-  Eigen::VectorXd project(const Eigen::VectorXd& x, const SparseMatrix& M, double L) const;
-  /// Scalar reduced mass Psi^T M_s Psi (m x m) for the rope's mass matrix M at length L.
-  Eigen::MatrixXd scalarMass(const SparseMatrix& M, double L) const;
+  /// The M-orthogonal projection of full coordinates x onto the basis at length L: solves
+  /// M_r y = B^T M x, M the rope's mass matrix at L (AncfRope::massMatrix), M_r = B^T M B.
+  /// Set up once (M_s Psi and the factorised scalar M_rs), applied to any number of vectors.
+  class Projection {
+   public:
+    Projection(const InvariantRopeBasis& basis, const SparseMatrix& M, double L);
+    Eigen::VectorXd operator()(const Eigen::VectorXd& x) const;
+    /// Scalar reduced mass M_rs = Psi^T M_s Psi (m x m).
+    const Eigen::MatrixXd& scalarMass() const { return Mr_; }
+
+   private:
+    Eigen::MatrixXd MsP_, Mr_;
+    Eigen::LDLT<Eigen::MatrixXd> ldlt_;
+  };
 
  private:
   Eigen::MatrixXd position_, slope_;  ///< nodes x m

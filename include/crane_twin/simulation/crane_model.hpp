@@ -31,6 +31,9 @@ struct CraneModel {
   int ropeDofs() const { return 6 * (scene.rope.elements + 1); }
   /// Total rope mass of the hanging length [kg].
   double ropeMass() const { return rope.mass_per_length * scene.rope.length; }
+  /// Mass that moves with the trolley point [kg] (0 without a crane) and gravity (0, 0, -g).
+  double trolleyMass() const { return scene.crane ? scene.crane->trolley_mass : 0.0; }
+  Eigen::Vector3d gravityVector() const { return Eigen::Vector3d(0.0, 0.0, -scene.gravity); }
 };
 
 CraneModel buildCraneModel(const Scene& scene);

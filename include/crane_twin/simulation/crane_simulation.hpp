@@ -16,6 +16,10 @@
 
 namespace crane_twin {
 
+/// The scene's ANCF rope at its initial length: elements, material of the equivalent rope, the
+/// end mass, gravity and the trolley mass on the top node (docs/model.md).
+AncfRope sceneRope(const CraneModel& model);
+
 class CraneSimulation final : public SupportedRopeSimulation {
  public:
   /// Builds the rope and its support. Integrates at full order whatever rope.model says (the

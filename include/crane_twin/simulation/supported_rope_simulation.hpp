@@ -45,9 +45,6 @@ class SupportedRopeSimulation : public Simulation {
  protected:
   /// Copies the model and builds its support (makeRopeSupport). Throws InputError.
   explicit SupportedRopeSimulation(const CraneModel& model);
-  /// Mass that moves with the trolley point [kg] (0 without a crane) and gravity (0, 0, -g).
-  double trolleyMass() const;
-  Eigen::Vector3d gravityVector() const;
   /// Drives at their start, the support at the scene's pose at rest.
   void resetDrivesAndPose();
   /// The initial state of the scene at t = 0 (docs/scenes.md, `initial`), accelerations

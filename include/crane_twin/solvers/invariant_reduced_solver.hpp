@@ -6,8 +6,8 @@
 //   a_0 - r_p(z) = 0                                 (E = [I3 0 ...]: psi_0 = 1, psi_k>0(0) = 0)
 // integrated by the full model's generalized-alpha Newton step (integrators/newton_step.hpp).
 //
-// The elastic force is the exact one at the expanded state, integrated at the full model's
-// Gauss points without expanding: with A = [a_0 ... a_(m-1)] (3 x m), D1, D2 (m x n_g) the
+// The elastic force is the exact one at the expanded state, integrated at Gauss points of the
+// rope's elements (at least 2 per element, .cpp kQuadraturePoints) without expanding: with A = [a_0 ... a_(m-1)] (3 x m), D1, D2 (m x n_g) the
 // shapes' first and second xi-derivatives at the points and w_g their weights in xi,
 //   r_x = A D1 / L,   r_xx = A D2 / L^2,   Q_A = sum_g w_g (phi_a,g D1_g^T + phi_b,g D2_g^T / L)
 // (phi_a, phi_b the gradient of the energy density, ancfCablePoint): two 3 x m x n_g products
@@ -24,6 +24,7 @@
 // approximation; only the iteration count does.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "crane_twin/integrators/coupled_state.hpp"
@@ -86,6 +87,8 @@ class InvariantReducedSolver {
   // Fill and factorise the iteration matrix for weights (a, c, k) and chord direction d.
   bool factorize(double a, double c, double k, const Eigen::Matrix3d& G, const Eigen::VectorXd& y);
   Eigen::Vector3d chord(const Eigen::VectorXd& y) const;
+  // The projection at the current length, set up on first use after a length change.
+  const InvariantRopeBasis::Projection& projection() const;
 
   const AncfRope& rope_;
   const InvariantRopeBasis& basis_;
@@ -114,6 +117,8 @@ class InvariantReducedSolver {
   int last_iterations_ = 0;
   int factorizations_ = 0;
   long newton_iterations_ = 0, steps_ = 0;
+  mutable std::optional<InvariantRopeBasis::Projection> projection_;
+  mutable double projection_length_ = -1.0;
 };
 
 }  // namespace crane_twin
