@@ -48,7 +48,6 @@ void InvariantReducedSimulation::initialize() {
   slack_hand_overs_ = failure_hand_overs_ = indicator_hand_overs_ = start_hand_overs_ = 0;
   max_indicator_ = 0.0;
   const CoupledState f = full_.initialState();  // the rope at the scene's length
-  solver_->refreshLength();
   full_.setState(f);
   // A start the basis cannot carry (a stress-free rope, a velocity given to the payload alone)
   // runs at full order until the hand-back criteria hold.
@@ -124,6 +123,9 @@ double InvariantReducedSimulation::errorIndicator(const CoupledState& f) const {
 }
 
 bool InvariantReducedSimulation::tryHandBack() {
+  // The full model may have hoisted since the hand-over (or a new run reset the length): the
+  // solver to the rope's length first.
+  solver_->refreshLength();
   const CoupledState& f = full_.state();
   if (weight_ > 0.0) {
     const double T = full_.solver().topTension(f);
