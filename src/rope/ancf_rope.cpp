@@ -126,6 +126,21 @@ double AncfRope::elasticEnergy(const Eigen::VectorXd& q) const {
   return U;
 }
 
+Eigen::VectorXd AncfRope::stretchedStraight(const Eigen::Vector3d& top, const Eigen::Vector3d& d,
+                                            double end_force, double force_per_length) const {
+  const double l = element_.length, L = length(), EA = element_.axial_stiffness;
+  Eigen::VectorXd q(dofs());
+  Eigen::Vector3d r = top;
+  for (int j = 0; j < nodes(); ++j) {
+    const double T = end_force + force_per_length * (L - j * l);
+    q.segment<3>(6 * j) = r;
+    q.segment<3>(6 * j + 3) = (1.0 + T / EA) * d;
+    const double Tmid = end_force + force_per_length * (L - (j + 0.5) * l);
+    r += (1.0 + Tmid / EA) * l * d;
+  }
+  return q;
+}
+
 Eigen::VectorXd AncfRope::straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d) const {
   Eigen::VectorXd q(dofs());
   for (int j = 0; j < nodes(); ++j) {

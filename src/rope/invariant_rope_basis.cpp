@@ -56,21 +56,14 @@ InvariantRopeBasis::InvariantRopeBasis(const AncfRope& rope, const InvariantBasi
     throw std::invalid_argument("reduced rope basis: mode counts must be >= 0");
   }
   const int N = rope.elements(), nodes = N + 1, ns = 2 * nodes;
-  const double L = rope.length(), l = rope.element().length;
-  const double EA = rope.element().axial_stiffness, mu = rope.element().mass_per_length;
-  // The vertical rope at its static tension profile T(x) = g (m_end + mu (L - x)), stretched by
-  // T / EA. Without gravity the shapes are those of the rope under 9.81 m/s^2 (a basis, not a
-  // state: any tension profile gives smooth shapes).
+  const double L = rope.length(), mu = rope.element().mass_per_length;
+  // The vertical rope at its static tension profile T(x) = g (m_end + mu (L - x)). Without
+  // gravity the shapes are those of the rope under 9.81 m/s^2 (a basis, not a state: any
+  // tension profile gives smooth shapes).
   const double g = rope.gravity().norm() > 0.0 ? rope.gravity().norm() : 9.81;
-  Eigen::VectorXd q(rope.dofs());
-  Eigen::Vector3d r = Eigen::Vector3d::Zero();
-  const Eigen::Vector3d d(0.0, 0.0, -1.0);
-  for (int j = 0; j < nodes; ++j) {
-    const double T = g * (rope.endMass() + mu * (L - j * l));
-    q.segment<3>(6 * j) = r;
-    q.segment<3>(6 * j + 3) = (1.0 + T / EA) * d;
-    r += (1.0 + g * (rope.endMass() + mu * (L - (j + 0.5) * l)) / EA) * l * d;
-  }
+  const Eigen::VectorXd q = rope.stretchedStraight(Eigen::Vector3d::Zero(),
+                                                   Eigen::Vector3d(0.0, 0.0, -1.0),
+                                                   g * rope.endMass(), g * mu);
   const SparseMatrix K = rope.tangentStiffness(q);
   const SparseMatrix Ms = scalarBlock(rope.massMatrix(), 0);
   const SparseMatrix KT = scalarBlock(K, 0), KA = scalarBlock(K, 2);

@@ -167,19 +167,9 @@ CoupledState FullOrderSolver::solveSwingEquilibrium(double swing_rad, double az_
   // T(s) = (W_end + mu g (L - s)) / cos(theta): the tension's geometric stiffness makes the
   // tangent definite (an unstressed straight rope can rotate about the anchor at no cost).
   const Eigen::Vector3d d = swingDirection(swing_rad, az_rad);
-  Eigen::VectorXd guess(rope_.dofs());
-  {
-    const double l = rope_.element().length, EA = rope_.element().axial_stiffness;
-    const double perLength = (W - endW) / rope_.length();
-    Eigen::Vector3d r = top;
-    for (int j = 0; j < rope_.nodes(); ++j) {
-      const double T = (endW + perLength * (rope_.length() - j * l)) / std::cos(swing_rad);
-      guess.segment<3>(6 * j) = r;
-      guess.segment<3>(6 * j + 3) = (1.0 + T / EA) * d;
-      const double Tmid = (endW + perLength * (rope_.length() - (j + 0.5) * l)) / std::cos(swing_rad);
-      r += (1.0 + Tmid / EA) * l * d;
-    }
-  }
+  const double perLength = (W - endW) / rope_.length();
+  const Eigen::VectorXd guess = rope_.stretchedStraight(top, d, endW / std::cos(swing_rad),
+                                                        perLength / std::cos(swing_rad));
   // Closed-form start: a massless rope's chord angle obeys tan(theta) = H / W_end; the rope's
   // own weight adds half its weight.
   double H0 = std::tan(swing_rad) * (endW + 0.5 * (W - endW));

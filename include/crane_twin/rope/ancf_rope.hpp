@@ -61,6 +61,12 @@ class AncfRope {
   double kineticEnergyRelativeToTop(const Eigen::VectorXd& v) const;
   /// Straight, unstretched rope from `top` along unit direction d.
   Eigen::VectorXd straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d) const;
+  /// Straight rope from `top` along d, stretched by the tension profile
+  /// T(x) = end_force + force_per_length (L - x) [N] (strain T / EA; node slopes at the nodes'
+  /// tension, positions integrated with the elements' mid tension): the hanging rope's static
+  /// shape along its chord, e.g. as a Newton start or a linearisation point.
+  Eigen::VectorXd stretchedStraight(const Eigen::Vector3d& top, const Eigen::Vector3d& d,
+                                    double end_force, double force_per_length) const;
 
  private:
   int elements_;

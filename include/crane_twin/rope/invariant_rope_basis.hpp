@@ -9,8 +9,9 @@
 // carries any finite rigid rotation and translation of a shape it carries (R q = B (I (x) R) y),
 // with a constant mass matrix M_r = (Psi^T M_s Psi) (x) I3 and no frame, no quadratic velocity
 // terms and no subdomains. The elastic force is evaluated exactly at the expanded state
-// (InvariantRopeForce), so the reduced model is the Galerkin projection of the full-order
-// equations onto the space of B.
+// (InvariantReducedSolver::force), so the reduced model is the Galerkin projection of the
+// full-order equations onto the space of B (with its own Gauss rule, at least 2 points per
+// element).
 //
 // The shapes, functions of xi = x / L (slopes stored as d/dxi, so r_x = a . psi' / L):
 //   psi_0 = 1 (the translation; a_0 is the top node's position, every other shape is zero there),

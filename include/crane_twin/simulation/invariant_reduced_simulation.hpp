@@ -5,21 +5,25 @@
 // travel need nothing more: the basis carries any rigid rotation; hoisting keeps the reduced
 // coordinates and rescales the matrices with the length.
 //
-// Hand-over to full order, where the basis cannot carry the state, and back:
-//  - the rope goes slack: top tension under kSlackTensionFraction of the hanging weight, or
-//    (every kStrainCheckSteps steps) a Gauss point's axial strain under kSlackFraction of the static
-//    strain under the end mass;
+// Hand-over to full order, where the basis cannot carry the state, and back (docs/model.md):
+//  - the rope is about to go slack (every kStrainCheckSteps steps): the predicted low point of
+//    the end mass's axial oscillation (predictedMinimumTension) under kSnatchTensionFraction of
+//    the hanging weight, or a Gauss point's axial strain under kSlackFraction of the static
+//    strain under the end mass; and at every step the top tension under kSlackTensionFraction;
 //  - a reduced step fails (Newton, even halved; a non-finite state);
 //  - the error indicator (every kCheckSteps steps): the displacement a static correction of the
-//    full equations' residual at the expanded state would add, dq = (K + s M)^-1 r with the top
-//    held (what the basis leaves out), exceeds kIndicatorTolerance at a node.
+//    full equations' residual at the expanded state would add, dq = (K + M)^-1 r (M in kg, K in
+//    N/m, so the shift is 1 s^-2) with the top held (what the basis leaves out), exceeds
+//    kIndicatorTolerance at a node.
 // A start the basis does not carry (the hand-back criteria below fail on the scene's initial
-// state: a stress-free rope, a velocity given to the payload alone) begins at full order.
-// At full order, after kHandBackDwell and then every kHandBackSteps steps (doubling after each
-// refused trial, up to kMaxHandBackInterval): the run comes back once the rope is taut again
-// (kTautFraction, kTautTensionFraction) and the projected state's indicator and position error
-// are under kHandBackTolerance. Hand-overs and the steps taken at full order are counted
-// (summary line, CSV column `full_order`, node diagnostics).
+// state: a stress-free rope, a velocity given to the payload alone, a snatching release) begins
+// at full order. At full order, after kHandBackDwell and then every kHandBackSteps steps
+// (doubling after each refused trial, up to kMaxHandBackInterval), the run comes back once the
+// rope is taut (kTautFraction, kTautTensionFraction), the predicted low point is above
+// kCalmTensionFraction, the projection moves no node by more than kHandBackTolerance and changes
+// the rope's energy by less than kHandBackEnergy, and the indicator at the projected state is
+// under kHandBackTolerance. Hand-overs and the steps taken at full order are counted (summary
+// line, CSV column `full_order_steps`, node diagnostics).
 #pragma once
 
 #include <Eigen/SparseCholesky>
@@ -72,7 +76,7 @@ class InvariantReducedSimulation final : public Simulation {
   const CoupledState& reducedState() const { return state_; }
   /// The error indicator at a full-coordinate state: max node |dq| [m] (header).
   double errorIndicator(const CoupledState& full) const;
-  /// Why the last hand-over happened: slack, failure or indicator counts.
+  /// Hand-overs by cause: slack (or its prediction), failed step, error indicator.
   long slackHandOvers() const { return slack_hand_overs_; }
   long failureHandOvers() const { return failure_hand_overs_; }
   long indicatorHandOvers() const { return indicator_hand_overs_; }
@@ -83,9 +87,6 @@ class InvariantReducedSimulation final : public Simulation {
 
   static constexpr double kSlackFraction = 0.1, kTautFraction = 0.2;
   static constexpr double kSlackTensionFraction = 0.1, kTautTensionFraction = 0.2;
-  /// Steps between the error indicator's evaluations (a tangent assembly and a sparse LDL^T
-  /// of the full rope: measured 1.4 ms at 120 elements, so 250 steps keep it near 5 us a step)
-  /// and between the strain checks (O(m n_g)).
   /// Snatch risk (checked with the strain): the tension the end mass's axial oscillation
   /// about its quasi-static tension (swing included) will reach at its low point,
   /// predictedMinimumTension; under kSnatchTensionFraction of the weight the rope is about to go
@@ -93,13 +94,17 @@ class InvariantReducedSimulation final : public Simulation {
   /// which the basis carries only in part, decide the path); a hand-back needs it above
   /// kCalmTensionFraction. Measured: the 60 deg release (its held-equilibrium tension 2 W drops
   /// to 0.5 W at release and rings down to 0.1 W at 0.18 s) handed over at 0.18 s without it
-  /// and left 5.4 cm rope RMS error; a 30 deg release predicts 0.58 W and stays reduced.
+  /// and left 5.4 cm rope RMS error; a 30 deg release stays reduced (its low point estimated
+  /// as W (cos 30 - (1 / cos 30 - cos 30)) = 0.58 W).
   static constexpr double kSnatchTensionFraction = 0.25, kCalmTensionFraction = 0.4;
   /// The predicted low point [N] from the top tension, the top and end node positions and
   /// velocities (world frame).
   double predictedMinimumTension(double tension, const Eigen::Vector3d& top,
                                  const Eigen::Vector3d& end, const Eigen::Vector3d& top_velocity,
                                  const Eigen::Vector3d& end_velocity) const;
+  /// Steps between the error indicator's evaluations (a tangent assembly and a sparse LDL^T
+  /// of the full rope: 1.4 ms at 120 elements, from the benchmark's 27.5 us a step with it every
+  /// 50 steps; 5.6 us a step averaged over 250) and between the strain checks (O(m n_g)).
   static constexpr int kCheckSteps = 250;
   static constexpr int kStrainCheckSteps = 10;
   static constexpr int kHandBackSteps = 20, kMaxHandBackInterval = 640;
