@@ -89,6 +89,18 @@ double InvariantReducedSimulation::predictedMinimumTension(double tension, const
   return quasi_static - std::sqrt(dT * dT + k * m_eff * va * va);
 }
 
+double InvariantReducedSimulation::swingEnergy(const CoupledState& f) const {
+  // (m_end + mu L / 2) |g| l (1 - cos theta): the end mass and half the rope lifted by the chord's
+  // angle theta from the hanging direction (l the chord's length).
+  const Eigen::Vector3d g = full_.rope().gravity();
+  const Eigen::Vector3d c = AncfRope::nodePosition(f.q, full_.ropeNodes() - 1) - f.q.head<3>();
+  const double l = c.norm(), gn = g.norm();
+  if (!(l > 0.0) || !(gn > 0.0)) return 0.0;
+  const CraneModel& m = full_.model();
+  return (m.end_mass + 0.5 * m.rope.mass_per_length * full_.ropeLength()) * gn *
+         (l - c.dot(g) / gn);
+}
+
 bool InvariantReducedSimulation::slack(const CoupledState& s, bool check_strain) const {
   if (!(weight_ > 0.0)) return false;
   const double T = solver_->topTension(s);
@@ -146,13 +158,14 @@ bool InvariantReducedSimulation::tryHandBack() {
     return false;
   }
   // The energy the projection drops or adds (kinetic relative to the top, and strain) against
-  // the rope's own: a hand-back that loses energy shifts the swing's period for good.
+  // the rope's own, its swing's potential energy included: a hand-back that loses energy
+  // shifts the swing's amplitude and period for good.
   const CoupledState e = solver_->expand(r);
   const AncfRope& rope = full_.rope();
   const double Tf = rope.kineticEnergyRelativeToTop(f.v), Uf = rope.elasticEnergy(f.q);
   const double dE = std::abs(Tf - rope.kineticEnergyRelativeToTop(e.v)) +
                     std::abs(Uf - rope.elasticEnergy(e.q));
-  if (!(dE < kHandBackEnergy * (Tf + Uf))) return false;
+  if (!(dE < kHandBackEnergy * (Tf + Uf + swingEnergy(f)))) return false;
   const double ind = errorIndicator(e);
   if (!(ind < kHandBackTolerance)) return false;
   state_ = r;

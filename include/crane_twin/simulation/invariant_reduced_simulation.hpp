@@ -113,7 +113,7 @@ class InvariantReducedSimulation final : public Simulation {
   /// waves a slack episode leaves on the rope that the basis drops), and the indicator bound.
   static constexpr double kHandBackTolerance = 5e-4;
   /// Hand-back: energy the projection changes (kinetic relative to the top plus strain) against
-  /// the rope's own.
+  /// the rope's own (kinetic relative to the top, strain and the swing's potential energy).
   static constexpr double kHandBackEnergy = 1e-4;
   /// Simulated time a hand-over stays at full order before the first hand-back trial [s]: the
   /// waves of a snatch or a slack episode ring for about a second on a 60 m rope.
@@ -122,6 +122,8 @@ class InvariantReducedSimulation final : public Simulation {
  private:
   void handOver(const CoupledState& full);
   bool slack(const CoupledState& s, bool check_strain) const;
+  // Potential energy of the swing of a full-coordinate state above the hanging rope [J].
+  double swingEnergy(const CoupledState& full) const;
   bool tryHandBack();
 
   CraneSimulation full_;
