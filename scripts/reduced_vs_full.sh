@@ -6,6 +6,8 @@
 # compare); for the reduced run also the speed-up and its hand-overs. One Markdown table row per
 # scene, in the list's order.
 #   scripts/reduced_vs_full.sh [LIST] [JOBS]     (defaults: config/operation_scenes.txt, 2)
+# A list line is split at blanks (xargs): quote a value with blanks,
+#   --set "commands=[{t: 0, slew_rate: 0.05}]".
 # CRANE_SIM overrides the binary (default build/core/crane_sim).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
