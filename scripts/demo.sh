@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main demo: install, build, start a ROS master if none runs, and run the default
-# T8036 scene (config/scenes/t8036_live.yaml: reduced rope, 10 modes) through crane_sim_node
+# T8036 scene (config/scenes/t8036_live.yaml: the default reduced rope, 5 ms steps) through crane_sim_node
 # for 20 s of simulated time at real time, driven by scripts/operator_profile.py (trolley in,
 # then slewing, then the command timeout), with rviz when a display exists. The run is recorded
 # (build/demo/demo.bag); the applied commands are then replayed by crane_sim at full order and

@@ -34,11 +34,12 @@ def main():
     rospy.Subscriber("crane/state", CraneState, lambda m: sim_t.__setitem__(0, m.t))
     pub = rospy.Publisher("crane/command", CraneCommand, queue_size=10)
     rospy.wait_for_service("crane_sim_node/pause", timeout=120)
+    # Wall-clock waits throughout: with use_sim_time set, rospy.sleep and rospy.Rate wait for a
+    # /clock that a paused simulator does not advance.
     while pub.get_num_connections() == 0 and not rospy.is_shutdown():
-        rospy.sleep(0.05)
+        time.sleep(0.05)
     rospy.ServiceProxy("crane_sim_node/pause", SetBool)(False)
-    # Wall-clock pacing (the profile itself follows simulated time from crane/state): a
-    # rospy.Rate would wait for /clock forever if use_sim_time were set and no clock came.
+    # The profile itself follows simulated time from crane/state.
     last_t, last_change = None, time.time()
     while not rospy.is_shutdown():
         t = sim_t[0]

@@ -1,5 +1,7 @@
 #include "crane_sim_node.hpp"
 
+#include <ros/master.h>
+
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
@@ -9,6 +11,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
+#include <set>
 #include <sstream>
 
 #include "crane_twin/io/config_reader.hpp"
@@ -72,6 +76,15 @@ NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
   optionalParam(pnh, "shutdown_at_end", s.shutdown_at_end, "true or false");
   optionalParam(pnh, "start_paused", s.start_paused, "true or false");
   optionalParam(pnh, "command_bag", s.command_bag, "a string");
+  optionalParam(pnh, "wait_for_recorder", s.wait_for_recorder, "a node name");
+  std::string topics;
+  if (pnh.hasParam("recorded_topics") && pnh.getParam("recorded_topics", topics)) {
+    std::istringstream in(topics);  // one string: names separated by blanks (record.launch)
+    for (std::string name; in >> name;) s.recorded_topics.push_back(name);
+  } else {
+    optionalParam(pnh, "recorded_topics", s.recorded_topics, "a list of topic names");
+  }
+  if (s.recorded_topics.empty()) s.recorded_topics = {"crane/state"};
   optionalParam(pnh, "displacement_scale", s.snapshot.displacement_scale, "a number");
   optionalParam(pnh, "rope_samples_per_element", s.snapshot.samples_per_element, "an integer");
   requireFinite("real_time_factor", s.real_time_factor, 0.0, false);
@@ -95,6 +108,7 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
       watchdog_(settings_.command_timeout) {
   if (settings_.duration < 0.0) settings_.duration = model_.scene.duration;
   paused_ = settings_.start_paused;
+  awaiting_recorder_ = !settings_.wait_for_recorder.empty();
   loadReplay();
   resetSimulation();
   joint_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 10);
@@ -354,6 +368,41 @@ void CraneSimNode::publishDiagnostics() {
 // Pacing: with real_time_factor f > 0, simulated time follows f x wall time from an anchor;
 // a lag of more than 0.25 s re-anchors (counted as an overrun) instead of racing to catch up.
 // With f = 0 the node steps from one publication to the next as fast as it can.
+bool CraneSimNode::recorderSubscribed(std::string& missing) const {
+  // getSystemState: [publishers, subscribers, services], each [[name, [node, ...]], ...].
+  XmlRpc::XmlRpcValue request, response, payload;
+  request[0] = ros::this_node::getName();
+  if (!ros::master::execute("getSystemState", request, response, payload, false)) {
+    missing = " (the master did not answer)";
+    return false;
+  }
+  const std::string recorder = nh_.resolveName(settings_.wait_for_recorder);
+  std::set<std::string> subscribed;
+  std::map<std::string, int> registered;  // subscribers per topic on the master
+  XmlRpc::XmlRpcValue& subscribers = payload[1];
+  for (int i = 0; i < subscribers.size(); ++i) {
+    XmlRpc::XmlRpcValue& nodes = subscribers[i][1];
+    const std::string topic = subscribers[i][0];
+    registered[topic] = nodes.size();
+    for (int j = 0; j < nodes.size(); ++j)
+      if (static_cast<std::string>(nodes[j]) == recorder) subscribed.insert(topic);
+  }
+  // A registration precedes the connection: our own publishers must also have connected every
+  // registered subscriber, or the first messages would go nowhere.
+  const std::vector<const ros::Publisher*> own = {&state_pub_, &joint_pub_, &marker_pub_,
+                                                  &applied_pub_, &diag_pub_, &clock_pub_};
+  missing.clear();
+  for (const std::string& topic : settings_.recorded_topics) {
+    const std::string name = nh_.resolveName(topic);
+    bool connected = subscribed.count(name) > 0;
+    for (const ros::Publisher* p : own)
+      if (*p && p->getTopic() == name && static_cast<int>(p->getNumSubscribers()) < registered[name])
+        connected = false;
+    if (!connected) missing += " " + name;
+  }
+  return missing.empty();
+}
+
 void CraneSimNode::run() {
   const double dt = model_.scene.time_step, period = 1.0 / settings_.publish_rate;
   publish();
@@ -368,10 +417,32 @@ void CraneSimNode::run() {
       last_diag_wall_ = now;
       publishDiagnostics();
     }
-    const bool running = !paused_ && !finished_ && !failed_;
+    if (awaiting_recorder_ && (now - last_recorder_check_).toSec() >= 0.1) {
+      last_recorder_check_ = now;
+      std::string missing;
+      if (recorderSubscribed(missing)) {
+        awaiting_recorder_ = false;
+        ROS_INFO("crane_sim_node: %s is recording; starting", settings_.wait_for_recorder.c_str());
+      } else if ((now - last_warn_wall_).toSec() >= 5.0) {
+        last_warn_wall_ = now;
+        ROS_WARN("crane_sim_node: waiting for %s to subscribe to%s",
+                 settings_.wait_for_recorder.c_str(), missing.c_str());
+      }
+    }
+    const bool running = !paused_ && !finished_ && !failed_ && !awaiting_recorder_;
     if (!running) {
       was_running = false;
-      if (finished_ && settings_.shutdown_at_end) break;
+      if (finished_ && settings_.shutdown_at_end) {
+        // A recorder still has our last messages in flight: give it a second to write them.
+        if (!settings_.wait_for_recorder.empty()) {
+          const ros::WallTime until = now + ros::WallDuration(1.0);
+          while (ros::ok() && ros::WallTime::now() < until) {
+            ros::spinOnce();
+            ros::WallDuration(0.02).sleep();
+          }
+        }
+        break;
+      }
       ros::WallDuration(std::min(period, 0.05)).sleep();
       continue;
     }

@@ -37,6 +37,10 @@ struct NodeSettings {
   bool shutdown_at_end = false;
   bool start_paused = false;           ///< wait for ~pause false before the first step
   std::string command_bag;             ///< replay crane/command_applied from this bag
+  /// Hold the first step until this node (a rosbag recorder, resolved in the node's namespace)
+  /// subscribes to every topic of recorded_topics, so a recording starts at t = 0.
+  std::string wait_for_recorder;
+  std::vector<std::string> recorded_topics;  ///< default: crane/state
   SnapshotOptions snapshot;
 };
 
@@ -69,6 +73,7 @@ class CraneSimNode {
   tf2_ros::TransformBroadcaster tf_;
 
   bool paused_ = false, finished_ = false, failed_ = false;
+  bool awaiting_recorder_ = false;
   std::string failure_;
   ros::Time stamp_origin_;
   double next_publish_ = 0.0;
@@ -81,11 +86,14 @@ class CraneSimNode {
   double last_step_cost_ = 0.0, last_rtf_ = 0.0;
   long steps_ = 0, rejected_ = 0, overruns_ = 0;
   int warnings_seen_ = 0;
-  ros::WallTime last_warn_wall_, last_diag_wall_;
+  ros::WallTime last_warn_wall_, last_diag_wall_, last_recorder_check_;
 
   void loadReplay();
   void resetSimulation();
   bool stepOnce();
+  /// True once settings_.wait_for_recorder subscribes to every recorded topic (master query);
+  /// the missing topics in `missing`.
+  bool recorderSubscribed(std::string& missing) const;
   void applyDueCommands();
   void apply(const CommandEntry& c, const char* source);
   void publish();

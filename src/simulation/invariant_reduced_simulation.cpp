@@ -81,7 +81,7 @@ double InvariantReducedSimulation::predictedMinimumTension(double tension, const
   // The winch pays rope out at L' (hoist speed): the axial oscillation is what moves beyond it.
   const double vr = v.dot(d), vp2 = std::max(0.0, v.squaredNorm() - vr * vr);
   const double va = vr - full_.drives().hoistSpeed();
-  const double L = full_.ropeLength(), mu = m.rope.mass_per_length;
+  const double L = ropeLength(), mu = m.rope.mass_per_length;
   const double g_d = full_.rope().gravity().dot(d);
   const double quasi_static = (m.end_mass + mu * L) * g_d + m.end_mass * vp2 / l;
   const double k = m.rope.axial_stiffness / L, m_eff = m.end_mass + mu * L / 3.0;
@@ -97,7 +97,7 @@ double InvariantReducedSimulation::swingEnergy(const CoupledState& f) const {
   const double l = c.norm(), gn = g.norm();
   if (!(l > 0.0) || !(gn > 0.0)) return 0.0;
   const CraneModel& m = full_.model();
-  return (m.end_mass + 0.5 * m.rope.mass_per_length * full_.ropeLength()) * gn *
+  return (m.end_mass + 0.5 * m.rope.mass_per_length * ropeLength()) * gn *
          (l - c.dot(g) / gn);
 }
 
@@ -189,12 +189,17 @@ void InvariantReducedSimulation::step() {
   }
   const double h = full_.model().scene.time_step;
   full_.advanceDrives(state_.t, h);
-  if (full_.followHoistLength()) solver_->refreshLength();  // y kept (header)
+  // Hoisting keeps y (header); the full rope follows only when it is needed (syncFullRope).
+  if (full_.model().scene.crane) {
+    const double to = full_.drives().hoistLength();
+    if (to != solver_->length()) solver_->setLength(to);
+  }
   ++steps_;
   try {
     solver_->step(state_);
   } catch (const NumericalFailure&) {
     // state_ is at the step's start, already at the new length: the full model takes the step.
+    syncFullRope();
     handOver(solver_->expand(state_));
     ++failure_hand_overs_;
     full_.stepAfterDrives();
@@ -202,11 +207,13 @@ void InvariantReducedSimulation::step() {
     return;
   }
   if (slack(state_, steps_ % kStrainCheckSteps == 0)) {
+    syncFullRope();
     handOver(solver_->expand(state_));
     ++slack_hand_overs_;
     return;
   }
   if (steps_ % kCheckSteps == 0) {
+    syncFullRope();
     const CoupledState f = solver_->expand(state_);
     const double e = errorIndicator(f);
     max_indicator_ = std::max(max_indicator_, e);
@@ -225,8 +232,34 @@ void InvariantReducedSimulation::sample(Eigen::Vector3d& payload, Eigen::Vector3
   jib_tip = full_.support().jibTipDisplacement(state_.z);
 }
 
+void InvariantReducedSimulation::syncFullRope() {
+  // The full model's rope (mass, weight, element length) at the reduced model's length, before
+  // anything reads it: a hand-over, the error indicator.
+  if (full_.followHoistLength()) solver_->refreshLength();
+}
+
+double InvariantReducedSimulation::ropeLength() const {
+  return full_order_ ? full_.ropeLength() : solver_->length();
+}
+
+std::vector<Eigen::Vector3d> InvariantReducedSimulation::ropeCurve(int per_element) const {
+  return sampleRopeCurve(fullState().q, ropeLength() / full_.rope().elements(), per_element);
+}
+
 SeriesValues InvariantReducedSimulation::series() const {
-  SeriesValues v = full_.seriesOf(fullState());
+  if (full_order_) {
+    SeriesValues v = full_.series();
+    v.subdomains = 1;
+    v.full_order_steps = full_order_steps_;
+    return v;
+  }
+  // From the reduced state: the end node, the Lagrange multiplier's tension and the reduced
+  // model's own energy (what its integrator conserves), without expanding the rope.
+  const int last = full_.ropeNodes() - 1;
+  SeriesValues v = full_.seriesWith(state_, solver_->nodePosition(state_.q, last),
+                                    solver_->nodePosition(state_.v, last),
+                                    solver_->topTension(state_), solver_->energy(state_),
+                                    solver_->length());
   v.subdomains = 1;
   v.full_order_steps = full_order_steps_;
   return v;

@@ -97,18 +97,27 @@ void SupportedRopeSimulation::sample(Eigen::Vector3d& payload, Eigen::Vector3d& 
 
 SeriesValues SupportedRopeSimulation::seriesOf(const CoupledState& s) const {
   const int e = endPointIndex();
+  return seriesWith(s, s.q.segment<3>(e), s.v.segment<3>(e), topTensionOf(s), energyOf(s),
+                    ropeLength());
+}
+
+SeriesValues SupportedRopeSimulation::seriesWith(const CoupledState& s,
+                                                 const Eigen::Vector3d& payload,
+                                                 const Eigen::Vector3d& payload_velocity,
+                                                 double tension, double energy,
+                                                 double rope_length) const {
   SeriesValues v;
   v.t = s.t;
-  v.payload = s.q.segment<3>(e);
-  v.payload_velocity = s.v.segment<3>(e);
+  v.payload = payload;
+  v.payload_velocity = payload_velocity;
   v.cab = support_->cabDisplacement(s.z);
   v.jib_tip = support_->jibTipDisplacement(s.z);
   v.trolley = support_->point(s.z);
-  v.rope_top_tension = topTensionOf(s);
-  v.rope_length = ropeLength();
+  v.rope_top_tension = tension;
+  v.rope_length = rope_length;
   v.slew_angle = drives_.slewAngle();
   v.trolley_radius = drives_.trolleyRadius();
-  v.energy = energyOf(s);
+  v.energy = energy;
   v.constraint_error = constraintError(*support_, s);
   setCraneWarnings(model_, drives_, v);
   return v;

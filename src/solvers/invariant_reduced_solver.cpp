@@ -91,8 +91,9 @@ void InvariantReducedSolver::setRopeDamping(double c) {
   damping_ = c;
 }
 
-void InvariantReducedSolver::refreshLength() {
-  L_ = rope_.length();
+void InvariantReducedSolver::setLength(double length) {
+  if (!(length > 0.0)) throw std::invalid_argument("rope length must be positive");
+  L_ = length;
   Mrs_ = rope_.element().mass_per_length * L_ * mass_hat_ +
          rope_.topMass() * psi_top_.transpose() * psi_top_ +
          rope_.endMass() * psi_end_.transpose() * psi_end_;
@@ -257,6 +258,7 @@ bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why
 }
 
 const InvariantRopeBasis::Projection& InvariantReducedSolver::projection() const {
+  if (rope_.length() != L_) throw std::logic_error("reduced projection: rope and solver lengths differ");
   if (!projection_ || projection_length_ != L_) {
     projection_.emplace(basis_, rope_.massMatrix(), L_);
     projection_length_ = L_;

@@ -60,9 +60,9 @@ class InvariantReducedSimulation final : public Simulation {
   }
   const CraneDrives& drives() const override { return full_.drives(); }
   const RopeSupport& support() const override { return full_.support(); }
-  std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override {
-    return sampleRopeCurve(fullState().q, full_.rope().element().length, per_element);
-  }
+  std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override;
+  /// The rope length being integrated [m] (the full rope's only while at full order).
+  double ropeLength() const;
   int subdomains() const override { return 1; }  ///< one basis for the whole run
   long halvedSteps() const override { return solver_->halvedSteps() + full_.halvedSteps(); }
   long handOvers() const override { return hand_overs_; }
@@ -121,6 +121,7 @@ class InvariantReducedSimulation final : public Simulation {
 
  private:
   void handOver(const CoupledState& full);
+  void syncFullRope();
   bool slack(const CoupledState& s, bool check_strain) const;
   // Potential energy of the swing of a full-coordinate state above the hanging rope [J].
   double swingEnergy(const CoupledState& full) const;

@@ -34,6 +34,12 @@ class SupportedRopeSimulation : public Simulation {
 
   /// The output row of a state in this model's coordinates.
   SeriesValues seriesOf(const CoupledState& s) const;
+  /// The row of a state whose rope part the caller evaluated itself (a reduced rope: payload,
+  /// its velocity, top tension [N], mechanical energy [J], rope length [m]); s gives the
+  /// support's coordinates and the top position.
+  SeriesValues seriesWith(const CoupledState& s, const Eigen::Vector3d& payload,
+                          const Eigen::Vector3d& payload_velocity, double tension, double energy,
+                          double rope_length) const;
   /// Advance the drives by dt under the active command and move the support to their pose;
   /// false where nothing moved.
   bool advanceDrives(double t, double dt);
