@@ -8,13 +8,14 @@ CORE_PKGS=(
   build-essential cmake pkg-config
   libeigen3-dev libsuitesparse-dev libarpack2-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev libboost-dev
+  parallel python3-yaml
 )
 ROS_PKGS=(
   catkin ros-core-dev ros-message-generation ros-std-msgs ros-sensor-msgs
   ros-geometry-msgs ros-visualization-msgs libtf2-ros-dev librostest-dev python3-rostest
   ros-std-srvs ros-diagnostic-msgs ros-rosgraph-msgs ros-tf2-msgs librosbag-dev python3-rosbag
   python3-rospy python3-roslaunch python3-rostopic ros-robot-state-publisher rviz tf2-tools
-  python3-tf2-ros python3-std-srvs python3-std-msgs python3-diagnostic-msgs rosbash parallel
+  python3-tf2-ros python3-std-srvs python3-std-msgs python3-diagnostic-msgs rosbash
   xvfb x11-utils imagemagick
   python3-matplotlib
 )

@@ -157,3 +157,17 @@ TEST(Scene, MalformedOverridesAreRefused) {
   expectRefused(p, {"duration.x=3"}, {"duration", "not a map"});
   expectRefused(p, {"rope.elements=[1, 2"}, {"not valid YAML"});
 }
+
+TEST(Scene, SitePoseIsReadAndChecked) {
+  const std::string p = writeScene("good.yaml", kGood);
+  const Scene def = loadScene(p);
+  EXPECT_EQ(def.site_position, Eigen::Vector3d::Zero());
+  EXPECT_EQ(def.site_yaw_deg, 0.0);
+  const Scene s = loadScene(p, {"site.position=[100, -20, 3.5]", "site.yaw_deg=180"});
+  EXPECT_EQ(s.site_position, Eigen::Vector3d(100, -20, 3.5));
+  EXPECT_EQ(s.site_yaw_deg, 180.0);
+  expectRefused(p, {"site.position=[1, 2]"}, {p, "site.position"});
+  expectRefused(p, {"site.position=[1, .nan, 2]"}, {p, "site.position"});
+  expectRefused(p, {"site.yaw_deg=400"}, {p, "site.yaw_deg", "400"});
+  expectRefused(p, {"site.yaw=3"}, {p, "site.yaw", "unknown key"});
+}

@@ -203,6 +203,18 @@ std::vector<double> ConfigNode::numberList(const std::string& key, std::size_t s
   return out;
 }
 
+std::vector<std::string> ConfigNode::stringList(const std::string& key) {
+  YAML::Node n = scalarOrNull(key);
+  std::vector<std::string> out;
+  if (!n.IsDefined() || n.IsNull()) return out;
+  if (!n.IsSequence()) fail(key, "must be a list of strings, got " + shown(n));
+  for (std::size_t i = 0; i < n.size(); ++i) {
+    if (!n[i].IsScalar()) fail(key, "entry " + std::to_string(i) + " must be a string");
+    out.push_back(n[i].Scalar());
+  }
+  return out;
+}
+
 Eigen::Vector3d ConfigNode::vec3(const std::string& key, std::optional<Eigen::Vector3d> def) {
   if (!has(key)) {
     used_.insert(key);

@@ -125,6 +125,12 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     n.finish();
   }
   {
+    ConfigNode n = root.map("site");
+    s.site_position = n.vec3("position", Eigen::Vector3d::Zero());
+    s.site_yaw_deg = n.number("yaw_deg", 0.0, Bounds::closed(-360.0, 360.0));
+    n.finish();
+  }
+  {
     ConfigNode n = root.map("initial");
     s.initial_mode = n.string("mode", "equilibrium", {"equilibrium", "stress_free"});
     s.swing_deg = n.number("swing_deg", 0.0, Bounds::closed(0.0, 180.0));

@@ -12,10 +12,12 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/io/site_description.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
 #include "crane_twin/integrators/numerical_failure.hpp"
 #include "ros_messages.hpp"
@@ -56,17 +58,42 @@ CommandEntry entryOf(const CraneCommand& m) {
 
 NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
   NodeSettings s;
-  if (!pnh.getParam("scene", s.scene) || s.scene.empty()) {
+  // A crane of a site file (docs/site.md): its scene, overrides, pose and frame prefix.
+  std::string site_file, site_crane;
+  optionalParam(pnh, "site", site_file, "a string (a site file)");
+  optionalParam(pnh, "site_crane", site_crane, "a string (a crane's name in ~site)");
+  std::optional<SiteCrane> crane;
+  if (!site_file.empty()) {
+    if (site_crane.empty()) throw InputError("parameter '~site' needs '~site_crane' (a name)");
+    for (const SiteCrane& c : loadSiteDescription(site_file).cranes)
+      if (c.name == site_crane) crane = c;
+    if (!crane) {
+      throw InputError("parameter '~site_crane' '" + site_crane + "': no such crane in " +
+                       site_file);
+    }
+    if (pnh.hasParam("scene")) {
+      throw InputError("give '~scene' or '~site' with '~site_crane', not both");
+    }
+    s.scene = crane->scene;
+    s.overrides = crane->overrides;
+    s.frame_prefix = crane->name + "/";
+    s.base_pose = {crane->position.x(), crane->position.y(), crane->position.z(),
+                   crane->yaw_deg * M_PI / 180.0};
+  } else if (!site_crane.empty()) {
+    throw InputError("parameter '~site_crane' needs '~site' (a site file)");
+  } else if (!pnh.getParam("scene", s.scene) || s.scene.empty()) {
     throw InputError("parameter '" + pnh.resolveName("scene") +
                      "' (path of a scene file) is required and must be a string");
   }
-  // ~overrides: a list of "key=value" strings, or one such string.
+  // ~overrides: a list of "key=value" strings, or one such string (after the site's).
   std::string single;
+  std::vector<std::string> extra;
   if (pnh.hasParam("overrides") && pnh.getParam("overrides", single)) {
-    s.overrides = {single};
+    extra = {single};
   } else {
-    optionalParam(pnh, "overrides", s.overrides, "a list of strings key=value");
+    optionalParam(pnh, "overrides", extra, "a list of strings key=value");
   }
+  s.overrides.insert(s.overrides.end(), extra.begin(), extra.end());
   optionalParam(pnh, "real_time_factor", s.real_time_factor, "a number");
   optionalParam(pnh, "publish_rate", s.publish_rate, "a number");
   optionalParam(pnh, "structure_marker_rate", s.structure_marker_rate, "a number");
@@ -77,6 +104,22 @@ NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
   optionalParam(pnh, "start_paused", s.start_paused, "true or false");
   optionalParam(pnh, "command_bag", s.command_bag, "a string");
   optionalParam(pnh, "wait_for_recorder", s.wait_for_recorder, "a node name");
+  optionalParam(pnh, "frame_prefix", s.frame_prefix, "a string");
+  if (!s.frame_prefix.empty() && s.frame_prefix.back() != '/') s.frame_prefix += '/';
+  if (s.frame_prefix.find_first_of(" \t") != std::string::npos ||
+      (!s.frame_prefix.empty() && s.frame_prefix.front() == '/')) {
+    throw InputError("parameter '~frame_prefix' '" + s.frame_prefix +
+                     "': a frame name has no blanks and no leading '/'");
+  }
+  optionalParam(pnh, "base_pose", s.base_pose, "a list of 4 numbers [x, y, z, yaw]");
+  if (!s.base_pose.empty()) {
+    if (s.base_pose.size() != 4) {
+      throw InputError("parameter '~base_pose' must be a list of 4 numbers [x, y, z, yaw] (m, rad), got " +
+                       std::to_string(s.base_pose.size()));
+    }
+    for (double v : s.base_pose)
+      if (!std::isfinite(v)) throw InputError("parameter '~base_pose' must be finite");
+  }
   std::string topics;
   if (pnh.hasParam("recorded_topics") && pnh.getParam("recorded_topics", topics)) {
     std::istringstream in(topics);  // one string: names separated by blanks (record.launch)
@@ -96,7 +139,19 @@ NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
   if (s.snapshot.samples_per_element < 1 || s.snapshot.samples_per_element > 64) {
     throw InputError("parameter '~rope_samples_per_element' must be in 1..64");
   }
-  if (s.real_time_factor == 0.0) s.publish_clock = true;  // docs/ros.md: 0 drives /clock
+  optionalParam(pnh, "follow_clock", s.follow_clock, "true or false");
+  if (s.follow_clock) {
+    if (s.publish_clock) {
+      throw InputError("parameters '~follow_clock' and '~publish_clock' exclude each other: one "
+                       "node owns /clock, the others follow it");
+    }
+    if (!ros::Time::isSimTime()) {
+      throw InputError("parameter '~follow_clock' needs /use_sim_time true (set it in the launch "
+                       "file before the nodes start)");
+    }
+  } else if (s.real_time_factor == 0.0) {
+    s.publish_clock = true;  // docs/ros.md: 0 drives /clock
+  }
   return s;
 }
 
@@ -117,6 +172,15 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   applied_pub_ = nh_.advertise<CraneCommand>("crane/command_applied", 50, true);
   diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 5);
   if (settings_.publish_clock) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+  // The crane on the site: world -> <prefix>base, latched (docs/site.md).
+  frames_.prefix = settings_.frame_prefix;
+  Eigen::Vector3d base = model_.scene.site_position;
+  double yaw = model_.scene.site_yaw_deg * M_PI / 180.0;
+  if (!settings_.base_pose.empty()) {
+    base = Eigen::Vector3d(settings_.base_pose[0], settings_.base_pose[1], settings_.base_pose[2]);
+    yaw = settings_.base_pose[3];
+  }
+  static_tf_.sendTransform(toBaseTransform(frames_, base, yaw, ros::Time::now()));
   command_sub_ = nh_.subscribe("crane/command", 20, &CraneSimNode::onCommand, this);
   reset_srv_ = pnh_.advertiseService("reset", &CraneSimNode::onReset, this);
   pause_srv_ = pnh_.advertiseService("pause", &CraneSimNode::onPause, this);
@@ -167,7 +231,8 @@ void CraneSimNode::resetSimulation() {
   watchdog_ = CommandWatchdog(settings_.command_timeout);
   finished_ = failed_ = false;
   failure_.clear();
-  stamp_origin_ = settings_.publish_clock ? ros::Time(0) : ros::Time::now();
+  stamp_origin_ =
+      settings_.publish_clock || settings_.follow_clock ? ros::Time(0) : ros::Time::now();
   next_publish_ = sim_->time();
   last_publish_sim_ = sim_->time();
   last_publish_wall_ = ros::WallTime::now();
@@ -314,16 +379,17 @@ void CraneSimNode::publish() {
     clock_pub_.publish(c);
   }
   joint_pub_.publish(toJointState(s, st));
-  tf_.sendTransform(toTransforms(s, st));
-  marker_pub_.publish(toMarkers(s, st, 1.5));
-  state_pub_.publish(toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model));
+  tf_.sendTransform(toTransforms(s, st, frames_));
+  marker_pub_.publish(toMarkers(s, st, 1.5, frames_));
+  state_pub_.publish(
+      toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model, frames_));
 }
 
 void CraneSimNode::publishDiagnostics() {
   diagnostic_msgs::DiagnosticArray a;
   a.header.stamp = stamp(sim_->time());
   diagnostic_msgs::DiagnosticStatus d;
-  d.name = "crane_sim_node: simulation";
+  d.name = ros::this_node::getName() + ": simulation";  // one per crane on a site
   d.hardware_id = model_.scene.file;
   const bool slow = settings_.real_time_factor > 0.0 && !paused_ && !finished_ &&
                     last_rtf_ < 0.9 * settings_.real_time_factor;
@@ -452,7 +518,14 @@ void CraneSimNode::run() {
       was_running = true;
     }
     double target = next_publish_;
-    if (settings_.real_time_factor > 0.0) {
+    if (settings_.follow_clock) {
+      // Keep up with the owner of /clock (stamps are simulated time from 0).
+      target = std::min(target, ros::Time::now().toSec());
+      if (sim_->time() + 0.5 * dt > target) {
+        ros::WallDuration(0.001).sleep();
+        continue;
+      }
+    } else if (settings_.real_time_factor > 0.0) {
       const double paced = anchor_sim + settings_.real_time_factor * (now - anchor_wall).toSec();
       if (paced - sim_->time() > 0.25 * settings_.real_time_factor + period) {
         ++overruns_;

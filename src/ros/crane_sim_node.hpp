@@ -7,6 +7,7 @@
 #include <ros/ros.h>
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
+#include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <deque>
@@ -19,6 +20,7 @@
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/analysis/crane_snapshot.hpp"
 #include "crane_twin/simulation/simulation.hpp"
+#include "ros_messages.hpp"
 
 namespace crane_twin {
 
@@ -33,6 +35,9 @@ struct NodeSettings {
   double structure_marker_rate = 10.0;
   double command_timeout = 0.5;        ///< s of simulated time, 0: never
   bool publish_clock = false;          ///< forced on when real_time_factor is 0
+  /// Step to keep up with /clock (another node owns it, docs/site.md) instead of the wall
+  /// clock; needs use_sim_time, excludes publish_clock, ignores real_time_factor.
+  bool follow_clock = false;
   double duration = -1.0;              ///< s; < 0: the scene's; 0: run until shut down
   bool shutdown_at_end = false;
   bool start_paused = false;           ///< wait for ~pause false before the first step
@@ -40,6 +45,10 @@ struct NodeSettings {
   /// Hold the first step until this node (a rosbag recorder, resolved in the node's namespace)
   /// subscribes to every topic of recorded_topics, so a recording starts at t = 0.
   std::string wait_for_recorder;
+  /// Before every frame the node publishes (docs/site.md), e.g. "crane_a/".
+  std::string frame_prefix;
+  /// ~base_pose [x, y, z, yaw] (m, rad): the mast foot on the site; empty: the scene's `site`.
+  std::vector<double> base_pose;
   std::vector<std::string> recorded_topics;  ///< default: crane/state
   SnapshotOptions snapshot;
 };
@@ -71,6 +80,8 @@ class CraneSimNode {
   ros::Publisher joint_pub_, state_pub_, marker_pub_, clock_pub_, diag_pub_, applied_pub_;
   ros::ServiceServer reset_srv_, pause_srv_;
   tf2_ros::TransformBroadcaster tf_;
+  tf2_ros::StaticTransformBroadcaster static_tf_;
+  CraneFrames frames_;
 
   bool paused_ = false, finished_ = false, failed_ = false;
   bool awaiting_recorder_ = false;

@@ -4,8 +4,6 @@ namespace crane_twin {
 
 const char* const kJointNames[3] = {"slew", "trolley", "hoist"};
 
-namespace {
-
 geometry_msgs::Point point(const Eigen::Vector3d& p) {
   geometry_msgs::Point m;
   m.x = p.x();
@@ -13,6 +11,11 @@ geometry_msgs::Point point(const Eigen::Vector3d& p) {
   m.z = p.z();
   return m;
 }
+
+Eigen::Vector3d fromMsg(const geometry_msgs::Point& p) { return {p.x, p.y, p.z}; }
+Eigen::Vector3d fromMsg(const geometry_msgs::Vector3& v) { return {v.x, v.y, v.z}; }
+
+namespace {
 
 geometry_msgs::Vector3 vector(const Eigen::Vector3d& p) {
   geometry_msgs::Vector3 m;
@@ -37,11 +40,12 @@ geometry_msgs::TransformStamped transform(const std::string& parent, const std::
   return t;
 }
 
-visualization_msgs::Marker marker(const std::string& ns, int type, const ros::Time& stamp) {
+visualization_msgs::Marker marker(const CraneFrames& f, const std::string& ns, int type,
+                                  const ros::Time& stamp) {
   visualization_msgs::Marker m;
-  m.header.frame_id = "world";
+  m.header.frame_id = f.base();
   m.header.stamp = stamp;
-  m.ns = ns;
+  m.ns = f(ns);
   m.id = 0;
   m.type = type;
   m.action = visualization_msgs::Marker::ADD;
@@ -62,27 +66,37 @@ sensor_msgs::JointState toJointState(const CraneSnapshot& s, const ros::Time& st
   return j;
 }
 
+geometry_msgs::TransformStamped toBaseTransform(const CraneFrames& f,
+                                                const Eigen::Vector3d& position, double yaw,
+                                                const ros::Time& stamp) {
+  FramePose p;
+  p.position = position;
+  p.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()));
+  return transform("world", f.base(), p, stamp);
+}
+
 std::vector<geometry_msgs::TransformStamped> toTransforms(const CraneSnapshot& s,
-                                                          const ros::Time& stamp) {
-  return {transform("world", "slewing", s.slewing, stamp),
-          transform("slewing", "jib_tip", s.jib_tip, stamp),
-          transform("slewing", "cab", s.cab, stamp),
-          transform("slewing", "trolley", s.trolley, stamp),
-          transform("world", "hook", s.hook, stamp),
-          transform("world", "payload", s.payload, stamp)};
+                                                          const ros::Time& stamp,
+                                                          const CraneFrames& f) {
+  return {transform(f.base(), f("slewing"), s.slewing, stamp),
+          transform(f("slewing"), f("jib_tip"), s.jib_tip, stamp),
+          transform(f("slewing"), f("cab"), s.cab, stamp),
+          transform(f("slewing"), f("trolley"), s.trolley, stamp),
+          transform(f.base(), f("hook"), s.hook, stamp),
+          transform(f.base(), f("payload"), s.payload, stamp)};
 }
 
 visualization_msgs::MarkerArray toMarkers(const CraneSnapshot& s, const ros::Time& stamp,
-                                          double payload_diameter) {
+                                          double payload_diameter, const CraneFrames& f) {
   visualization_msgs::MarkerArray a;
-  auto rope = marker("rope", visualization_msgs::Marker::LINE_STRIP, stamp);
+  auto rope = marker(f, "rope", visualization_msgs::Marker::LINE_STRIP, stamp);
   rope.scale.x = 0.12;
   rope.color.r = rope.color.g = rope.color.b = 0.15f;
   rope.points.reserve(s.rope_curve.size());
   for (const auto& p : s.rope_curve) rope.points.push_back(point(p));
   a.markers.push_back(rope);
 
-  auto payload = marker("payload", visualization_msgs::Marker::SPHERE, stamp);
+  auto payload = marker(f, "payload", visualization_msgs::Marker::SPHERE, stamp);
   payload.pose.position = point(s.payload.position);
   payload.scale.x = payload.scale.y = payload.scale.z = payload_diameter;
   payload.color.r = 1.0f;
@@ -90,7 +104,7 @@ visualization_msgs::MarkerArray toMarkers(const CraneSnapshot& s, const ros::Tim
   a.markers.push_back(payload);
 
   if (!s.structure_segments.empty()) {
-    auto structure = marker("structure", visualization_msgs::Marker::LINE_LIST, stamp);
+    auto structure = marker(f, "structure", visualization_msgs::Marker::LINE_LIST, stamp);
     structure.scale.x = 0.08;
     structure.color.r = 0.95f;
     structure.color.g = 0.75f;
@@ -103,11 +117,12 @@ visualization_msgs::MarkerArray toMarkers(const CraneSnapshot& s, const ros::Tim
 }
 
 CraneState toStateMessage(const CraneSnapshot& s, const ros::Time& stamp, double step_cost,
-                          double real_time_factor, const std::string& model) {
+                          double real_time_factor, const std::string& model,
+                          const CraneFrames& f) {
   const SeriesValues& v = s.series;
   CraneState m;
   m.header.stamp = stamp;
-  m.header.frame_id = "world";
+  m.header.frame_id = f.base();
   m.t = v.t;
   m.payload = point(v.payload);
   m.payload_velocity = vector(v.payload_velocity);

@@ -13,19 +13,40 @@
 
 namespace crane_twin {
 
+/// Eigen <-> geometry_msgs.
+geometry_msgs::Point point(const Eigen::Vector3d& p);
+Eigen::Vector3d fromMsg(const geometry_msgs::Point& p);
+Eigen::Vector3d fromMsg(const geometry_msgs::Vector3& v);
+
 /// Joint names the node publishes and the URDF declares.
 extern const char* const kJointNames[3];  // slew, trolley, hoist
 
 /// slew (rad, rad/s), trolley (m, m/s), hoist (rope length m, m/s, effort = top tension N).
 sensor_msgs::JointState toJointState(const CraneSnapshot& s, const ros::Time& stamp);
-/// world -> slewing -> {jib_tip, cab, trolley}; world -> {hook, payload}.
+/// The frames of one crane (docs/site.md): `prefix` (e.g. "crane_a/", "" for a lone crane)
+/// before every name; `base` is the crane's own frame (the snapshot's world: mast foot, z up).
+struct CraneFrames {
+  std::string prefix;
+  std::string operator()(const std::string& name) const { return prefix + name; }
+  std::string base() const { return prefix + "base"; }
+};
+
+/// The static site transform world -> <prefix>base: the mast foot at `position`, turned by
+/// `yaw` [rad] about z.
+geometry_msgs::TransformStamped toBaseTransform(const CraneFrames& f,
+                                                const Eigen::Vector3d& position, double yaw,
+                                                const ros::Time& stamp);
+/// base -> slewing -> {jib_tip, cab, trolley}; base -> {hook, payload} (prefixed).
 std::vector<geometry_msgs::TransformStamped> toTransforms(const CraneSnapshot& s,
-                                                          const ros::Time& stamp);
-/// Rope LINE_STRIP, payload SPHERE, deformed structure LINE_LIST (frame world).
+                                                          const ros::Time& stamp,
+                                                          const CraneFrames& f = {});
+/// Rope LINE_STRIP, payload SPHERE, deformed structure LINE_LIST (frame <prefix>base,
+/// namespaces <prefix>rope, ...).
 visualization_msgs::MarkerArray toMarkers(const CraneSnapshot& s, const ros::Time& stamp,
-                                          double payload_diameter);
-/// The docs/cli.md row with the step cost [s] and real-time factor.
+                                          double payload_diameter, const CraneFrames& f = {});
+/// The docs/cli.md row with the step cost [s] and real-time factor (frame <prefix>base).
 CraneState toStateMessage(const CraneSnapshot& s, const ros::Time& stamp, double step_cost,
-                          double real_time_factor, const std::string& model);
+                          double real_time_factor, const std::string& model,
+                          const CraneFrames& f = {});
 
 }  // namespace crane_twin

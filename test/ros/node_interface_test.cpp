@@ -47,14 +47,7 @@ size_t stateCount() {
   return rec->states.size();
 }
 
-bool waitFor(const std::function<bool()>& done, double seconds) {
-  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(seconds);
-  while (ros::WallTime::now() < end && ros::ok()) {
-    if (done()) return true;
-    ros::WallDuration(0.02).sleep();
-  }
-  return done();
-}
+using crane_twin_test::waitFor;
 
 bool finiteState(const crane_twin::CraneState& s) {
   const double v[] = {s.t, s.payload.x, s.payload.y, s.payload.z, s.payload_velocity.x,
@@ -103,7 +96,7 @@ TEST(CraneSimNode, PublishesJointsWithTheRopeTension) {
 TEST(CraneSimNode, TfTreeIsComplete) {
   tf2_ros::Buffer buffer;
   tf2_ros::TransformListener listener(buffer);
-  for (const char* frame : {"slewing", "jib_tip", "cab", "trolley", "hook", "payload",
+  for (const char* frame : {"base", "slewing", "jib_tip", "cab", "trolley", "hook", "payload",
                             "tower", "slewing_unit", "jib", "trolley_carriage", "hook_block"}) {
     std::string error;
     EXPECT_TRUE(buffer.canTransform("world", frame, ros::Time(0), ros::Duration(10.0), &error))
@@ -115,6 +108,11 @@ TEST(CraneSimNode, TfTreeIsComplete) {
   const double drop = trolley.transform.translation.z - payload.transform.translation.z;
   EXPECT_GT(drop, 59.0);
   EXPECT_LT(drop, 61.0);
+  // Without a site pose the crane's base is the world's origin.
+  const auto base = buffer.lookupTransform("world", "base", ros::Time(0));
+  EXPECT_EQ(base.transform.translation.x, 0.0);
+  EXPECT_EQ(base.transform.translation.z, 0.0);
+  EXPECT_EQ(base.transform.rotation.w, 1.0);
 }
 
 TEST(CraneSimNode, MarkersShowRopePayloadAndStructure) {
@@ -129,7 +127,7 @@ TEST(CraneSimNode, MarkersShowRopePayloadAndStructure) {
   std::lock_guard<std::mutex> l(rec->m);
   bool rope = false, payload = false, structure = false;
   for (const auto& m : rec->markers.markers) {
-    EXPECT_EQ(m.header.frame_id, "world");
+    EXPECT_EQ(m.header.frame_id, "base");  // the crane's own frame (no prefix, at the origin)
     if (m.ns == "rope") {
       rope = true;
       EXPECT_EQ(m.type, visualization_msgs::Marker::LINE_STRIP);
@@ -258,7 +256,7 @@ int main(int argc, char** argv) {
   ros::Subscriber e = crane_twin_test::subscribe<diagnostic_msgs::DiagnosticArray>(nh, "/diagnostics", 10, [](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
     std::lock_guard<std::mutex> l(rec->m);
     for (const auto& s : m->status)
-      if (s.name == "crane_sim_node: simulation") {
+      if (s.name == "/crane_sim_node: simulation") {  // named after the node
         rec->diag = s;
         ++rec->diag_count;
       }

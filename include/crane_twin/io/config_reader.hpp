@@ -57,6 +57,8 @@ class ConfigNode {
                      const std::vector<std::string>& allowed = {});
   Eigen::Vector3d vec3(const std::string& key, std::optional<Eigen::Vector3d> def);
   std::vector<double> numberList(const std::string& key, std::size_t size, Bounds b);
+  /// A list of strings; absent or null: empty.
+  std::vector<std::string> stringList(const std::string& key);
 
   /// Throws InputError naming the first key that was not read.
   void finish() const;

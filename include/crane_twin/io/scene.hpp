@@ -64,6 +64,11 @@ struct Scene {
   Eigen::Vector3d payload_velocity = Eigen::Vector3d::Zero();
   double gravity = 9.81;
   std::vector<CommandEntry> commands;
+  /// Where the crane stands on a site (docs/site.md): the mast foot [m] and the yaw about z
+  /// [deg] of the crane's frame in the site frame. Places the ROS frames and the clearance
+  /// monitor's parts; the simulation itself runs in the crane's frame.
+  Eigen::Vector3d site_position = Eigen::Vector3d::Zero();
+  double site_yaw_deg = 0.0;
 
   /// Hook block mass from the crane file (0 with crane: none) [kg].
   double hookBlockMass() const { return crane ? crane->hook_block_mass : 0.0; }

@@ -1,0 +1,173 @@
+#!/usr/bin/python3
+"""Campaigns of crane_sim runs (docs/campaigns.md), two jobs in one file:
+
+  campaign.py expand CAMPAIGN.yaml [RESULTS.csv]
+      one line per run of the campaign (scene x the product of the grid's values), as
+      id<TAB>scene<TAB>override<TAB>override...; runs whose id is already in RESULTS.csv are
+      left out (a second call runs only what is missing).
+  campaign.py run LINE
+      run one expanded line with crane_sim and print its CSV row (no header).
+  campaign.py header
+      the CSV header.
+
+scripts/campaign.sh drives these with GNU parallel on local cores or ssh hosts.
+"""
+import csv
+import hashlib
+import io
+import itertools
+import math
+import os
+import socket
+import subprocess
+import sys
+import tempfile
+import time
+
+import yaml
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+COLUMNS = ["id", "scene", "overrides", "exit_status", "wall_s", "sim_s", "max_swing_deg",
+           "max_tension_ratio", "max_load_chart_ratio", "warnings", "message", "host"]
+
+
+class CampaignError(Exception):
+    pass
+
+
+def crane_sim():
+    """The crane_sim binary: CRANE_SIM, else the catkin workspace's, else the core build's."""
+    for p in (os.environ.get("CRANE_SIM", ""),
+              os.path.join(ROOT, "build/ws/devel/lib/crane_twin/crane_sim"),
+              os.path.join(ROOT, "build/core/crane_sim")):
+        if p and os.access(p, os.X_OK):
+            return p
+    raise CampaignError("no crane_sim binary (build first: scripts/build.sh, or set CRANE_SIM)")
+
+
+def scene_path(campaign_file, name):
+    if "/" in name or name.endswith(".yaml"):
+        return name if os.path.isabs(name) else os.path.normpath(
+            os.path.join(os.path.dirname(os.path.abspath(campaign_file)), name))
+    return os.path.join(ROOT, "config", "scenes", name + ".yaml")
+
+
+def value_text(v):
+    """A YAML value as crane_sim's --set takes it (flow style, one line)."""
+    if isinstance(v, str):
+        return v
+    return yaml.safe_dump(v, default_flow_style=True, width=10**6).strip().removesuffix("...").strip()
+
+
+def expand(campaign_file):
+    try:
+        with open(campaign_file) as f:
+            c = yaml.safe_load(f)
+    except (OSError, yaml.YAMLError) as e:
+        raise CampaignError(f"{campaign_file}: {e}")
+    if not isinstance(c, dict):
+        raise CampaignError(f"{campaign_file}: must be a map with scenes, set, grid")
+    unknown = set(c) - {"scenes", "set", "grid", "duration"}
+    if unknown:
+        raise CampaignError(f"{campaign_file}: unknown key(s) {', '.join(sorted(unknown))}")
+    scenes = c.get("scenes")
+    if not isinstance(scenes, list) or not scenes or not all(isinstance(s, str) for s in scenes):
+        raise CampaignError(f"{campaign_file}: 'scenes' must be a non-empty list of scene names")
+    fixed = c.get("set", []) or []
+    if not isinstance(fixed, list) or not all(isinstance(s, str) and "=" in s for s in fixed):
+        raise CampaignError(f"{campaign_file}: 'set' must be a list of key=value strings")
+    if "duration" in c:
+        d = c["duration"]
+        if not isinstance(d, (int, float)) or isinstance(d, bool) or not d > 0 or math.isinf(d):
+            raise CampaignError(f"{campaign_file}: 'duration' must be a positive number of seconds")
+        fixed = fixed + [f"duration={d}"]
+    grid = c.get("grid", {}) or {}
+    if not isinstance(grid, dict) or not all(isinstance(v, list) and v for v in grid.values()):
+        raise CampaignError(f"{campaign_file}: 'grid' must map keys to non-empty lists of values")
+    keys = list(grid)
+    runs = []
+    for scene in scenes:
+        path = scene_path(campaign_file, scene)
+        if not os.path.isfile(path):
+            raise CampaignError(f"{campaign_file}: scene '{scene}': no file {path}")
+        for combo in itertools.product(*(grid[k] for k in keys)):
+            overrides = fixed + [f"{k}={value_text(v)}" for k, v in zip(keys, combo)]
+            key = scene + "\0" + "\0".join(overrides)
+            runs.append((hashlib.sha1(key.encode()).hexdigest()[:12], scene, overrides))
+    return runs
+
+
+def done_ids(results):
+    if not results or not os.path.isfile(results):
+        return set()
+    with open(results, newline="") as f:
+        return {row["id"] for row in csv.DictReader(f) if row.get("id")}
+
+
+def run(line):
+    fields = line.rstrip("\n").split("\t")
+    if len(fields) < 2:
+        raise CampaignError(f"not an expanded campaign line: {line!r}")
+    run_id, scene, overrides = fields[0], fields[1], fields[2:]
+    row = dict.fromkeys(COLUMNS, "")
+    row.update(id=run_id, scene=scene, overrides=" ".join(overrides), host=socket.gethostname())
+    path = scene if (scene.startswith("/") or scene.endswith(".yaml")) else scene_path("", scene)
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "series.csv")
+        cmd = [crane_sim(), "run", path, "--quiet", "--out", out]
+        for o in overrides:
+            cmd += ["--set", o]
+        start = time.monotonic()
+        p = subprocess.run(cmd, capture_output=True, text=True)
+        row["exit_status"] = p.returncode
+        row["wall_s"] = f"{time.monotonic() - start:.3f}"
+        errors = [l for l in p.stderr.splitlines() if l.startswith("error")]
+        row["message"] = errors[0] if errors else ""
+        if os.path.isfile(out):
+            summarise(out, row)
+    return row
+
+
+def summarise(series_csv, row):
+    """The run's figures from its time series: the largest swing of the rope's chord from the
+    vertical [deg], the largest tension and load-chart ratios, the OR of the warning bits."""
+    swing, tension, chart, warnings, t = 0.0, 0.0, 0.0, 0, 0.0
+    with open(series_csv, newline="") as f:
+        for r in csv.DictReader(f):
+            dx = float(r["payload_x"]) - float(r["trolley_x"])
+            dy = float(r["payload_y"]) - float(r["trolley_y"])
+            dz = float(r["payload_z"]) - float(r["trolley_z"])
+            swing = max(swing, math.degrees(math.atan2(math.hypot(dx, dy), -dz)))
+            tension = max(tension, float(r["tension_ratio"]))
+            chart = max(chart, float(r["load_chart_ratio"]))
+            warnings |= int(r["warnings"])
+            t = float(r["t"])
+    row.update(sim_s=f"{t:g}", max_swing_deg=f"{swing:.4g}", max_tension_ratio=f"{tension:.4g}",
+               max_load_chart_ratio=f"{chart:.4g}", warnings=warnings)
+
+
+def main(argv):
+    try:
+        if len(argv) >= 2 and argv[1] == "header":
+            csv.writer(sys.stdout).writerow(COLUMNS)
+        elif len(argv) in (3, 4) and argv[1] == "expand":
+            skip = done_ids(argv[3] if len(argv) == 4 else None)
+            for run_id, scene, overrides in expand(argv[2]):
+                if run_id not in skip:
+                    print("\t".join([run_id, scene_path(argv[2], scene)] + overrides))
+        elif len(argv) == 3 and argv[1] == "run":
+            row = run(argv[2])
+            buf = io.StringIO()
+            csv.writer(buf).writerow([row[c] for c in COLUMNS])
+            sys.stdout.write(buf.getvalue())
+        else:
+            print(__doc__, file=sys.stderr)
+            return 2
+    except CampaignError as e:
+        print(f"campaign: {e}", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
