@@ -6,7 +6,8 @@ shipped two-crane site.
 Usage: site_launch.py SITE.yaml [--host NAME=ADDRESS ...] [--user NAME=USER ...]
   --host  run crane NAME on that host (ROS multi-machine launch; scripts/ros_env_loader.sh)
   --user  log in to that crane's host as USER
-The first crane owns /clock when the launch runs with real_time_factor:=0; the others follow it.
+The first crane owns /clock when the launch runs with real_time_factor:=0 and waits for the
+others, which follow it (lockstep).
 """
 import argparse
 import os
@@ -68,6 +69,10 @@ def main():
         if n in users:
             out.append(f'    <arg name="user" value={quoteattr(users[n])}/>')
         out.append("  </include>")
+    if len(names) > 1:
+        followers = ", ".join(f"/{n}/crane/state" for n in names[1:])
+        out.append(f'  <rosparam if="$(arg fast)" param="{names[0]}/crane_sim_node/clock_followers">'
+                   f'[{followers}]</rosparam>')
     out += ['  <node pkg="crane_twin" type="site_monitor" name="site_monitor" output="screen">',
             f'    <param name="site" value={path}/>', "  </node>",
             '  <node if="$(arg rviz)" pkg="rviz" type="rviz" name="rviz" '

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -140,6 +141,7 @@ NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
     throw InputError("parameter '~rope_samples_per_element' must be in 1..64");
   }
   optionalParam(pnh, "follow_clock", s.follow_clock, "true or false");
+  optionalParam(pnh, "clock_followers", s.clock_followers, "a list of crane/state topic names");
   if (s.follow_clock) {
     if (s.publish_clock) {
       throw InputError("parameters '~follow_clock' and '~publish_clock' exclude each other: one "
@@ -151,6 +153,10 @@ NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
     }
   } else if (s.real_time_factor == 0.0) {
     s.publish_clock = true;  // docs/ros.md: 0 drives /clock
+  }
+  if (!s.clock_followers.empty() && !s.publish_clock) {
+    throw InputError("parameter '~clock_followers' needs this node to own /clock "
+                     "(~publish_clock true or ~real_time_factor 0)");
   }
   return s;
 }
@@ -182,6 +188,12 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   }
   static_tf_.sendTransform(toBaseTransform(frames_, base, yaw, ros::Time::now()));
   command_sub_ = nh_.subscribe("crane/command", 20, &CraneSimNode::onCommand, this);
+  follower_t_.assign(settings_.clock_followers.size(), -std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < settings_.clock_followers.size(); ++i) {
+    follower_subs_.push_back(nh_.subscribe<CraneState>(
+        settings_.clock_followers[i], 10,
+        [this, i](const CraneState::ConstPtr& m) { follower_t_[i] = m->t; }));
+  }
   reset_srv_ = pnh_.advertiseService("reset", &CraneSimNode::onReset, this);
   pause_srv_ = pnh_.advertiseService("pause", &CraneSimNode::onPause, this);
   const bool ancf = model_.scene.rope.model != "pendulum";
@@ -381,8 +393,10 @@ void CraneSimNode::publish() {
   joint_pub_.publish(toJointState(s, st));
   tf_.sendTransform(toTransforms(s, st, frames_));
   marker_pub_.publish(toMarkers(s, st, 1.5, frames_));
-  state_pub_.publish(
-      toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model, frames_));
+  last_state_ =
+      toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model, frames_);
+  state_pub_.publish(last_state_);
+  last_state_wall_ = now;
 }
 
 void CraneSimNode::publishDiagnostics() {
@@ -518,10 +532,29 @@ void CraneSimNode::run() {
       was_running = true;
     }
     double target = next_publish_;
+    if (!follower_t_.empty()) {
+      // Lockstep with the clock's followers (docs/site.md): at most 2.5 periods ahead.
+      const double slowest = *std::min_element(follower_t_.begin(), follower_t_.end());
+      target = std::min(target, slowest + 2.5 * period);
+      if (sim_->time() + 0.5 * dt > target) {
+        if ((now - last_warn_wall_).toSec() >= 5.0 && !std::isfinite(slowest)) {
+          last_warn_wall_ = now;
+          ROS_WARN("crane_sim_node: waiting for the clock's followers to publish their state");
+        }
+        ros::WallDuration(0.0005).sleep();
+        continue;
+      }
+    }
     if (settings_.follow_clock) {
       // Keep up with the owner of /clock (stamps are simulated time from 0).
       target = std::min(target, ros::Time::now().toSec());
       if (sim_->time() + 0.5 * dt > target) {
+        // Waiting for the clock: the owner may be waiting for our state (lockstep), and a
+        // message sent before its subscription connected is lost, so repeat it now and then.
+        if ((now - last_state_wall_).toSec() >= 0.2) {
+          state_pub_.publish(last_state_);
+          last_state_wall_ = now;
+        }
         ros::WallDuration(0.001).sleep();
         continue;
       }

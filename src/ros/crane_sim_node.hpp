@@ -38,6 +38,9 @@ struct NodeSettings {
   /// Step to keep up with /clock (another node owns it, docs/site.md) instead of the wall
   /// clock; needs use_sim_time, excludes publish_clock, ignores real_time_factor.
   bool follow_clock = false;
+  /// The owner of /clock does not run ahead of these followers (their crane/state topics) by
+  /// more than 2.5 publication periods, so a site at real_time_factor 0 stays in lockstep.
+  std::vector<std::string> clock_followers;
   double duration = -1.0;              ///< s; < 0: the scene's; 0: run until shut down
   bool shutdown_at_end = false;
   bool start_paused = false;           ///< wait for ~pause false before the first step
@@ -77,6 +80,10 @@ class CraneSimNode {
   std::vector<Replayed> replay_all_;
 
   ros::Subscriber command_sub_;
+  std::vector<ros::Subscriber> follower_subs_;
+  std::vector<double> follower_t_;  ///< latest simulated time of each clock follower [s]
+  CraneState last_state_;           ///< the last crane/state published
+  ros::WallTime last_state_wall_;   ///< when it was last (re)published
   ros::Publisher joint_pub_, state_pub_, marker_pub_, clock_pub_, diag_pub_, applied_pub_;
   ros::ServiceServer reset_srv_, pause_srv_;
   tf2_ros::TransformBroadcaster tf_;
