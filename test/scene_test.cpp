@@ -171,3 +171,39 @@ TEST(Scene, SitePoseIsReadAndChecked) {
   expectRefused(p, {"site.yaw_deg=400"}, {p, "site.yaw_deg", "400"});
   expectRefused(p, {"site.yaw=3"}, {p, "site.yaw", "unknown key"});
 }
+
+TEST(Scene, MisspeltKeysAreNamedWithTheNearestValidKey) {
+  // A misspelt required key is an unknown key, not a missing one.
+  std::string text = kGood;
+  text.replace(text.find("time_step"), 9, "time_stpe");
+  const std::string p = writeScene("typo.yaml", text);
+  expectRefused(p, {}, {p, "'time_stpe'", "unknown key", "did you mean 'time_step'"});
+  const std::string good = writeScene("good.yaml", kGood);
+  expectRefused(good, {"rope.elemnts=10"},
+                {"'rope.elemnts'", "unknown key", "did you mean 'rope.elements'",
+                 "set by the override 'rope.elemnts=10'"});
+  // Far from every key: no suggestion.
+  try {
+    loadScene(good, {"wind=3"});
+    FAIL() << "wind accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).find("did you mean"), std::string::npos) << e.what();
+  }
+}
+
+TEST(Scene, ErrorsNameTheOverrideThatSetTheValue) {
+  const std::string p = writeScene("good.yaml", kGood);
+  expectRefused(p, {"payload.mass=-1"}, {"payload.mass", "set by the override 'payload.mass=-1'"});
+  expectRefused(p, {"rope={model: full, elements: 0, length: 20.0}"},
+                {"rope.elements", "set by the override 'rope={model: full"});
+  // A value from the file itself names no override.
+  std::string text = kGood;
+  text.replace(text.find("mass: 100.0"), 11, "mass: -5.0");
+  const std::string bad = writeScene("bad_mass.yaml", text);
+  try {
+    loadScene(bad, {"duration=2"});
+    FAIL() << "negative mass accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()).find("override"), std::string::npos) << e.what();
+  }
+}

@@ -67,15 +67,71 @@ YAML::Node loadYamlFile(const std::string& path) {
   return root;
 }
 
-ConfigNode::ConfigNode(YAML::Node node, std::string file, std::string path)
-    : node_(std::move(node)), file_(std::move(file)), path_(std::move(path)) {}
+ConfigNode::ConfigNode(YAML::Node node, std::string file, std::string path,
+                       std::shared_ptr<const std::map<std::string, std::string>> overrides)
+    : node_(std::move(node)),
+      file_(std::move(file)),
+      path_(std::move(path)),
+      overrides_(std::move(overrides)) {}
+
+namespace {
+// Levenshtein distance (insertions, deletions, substitutions; a swap of neighbours counts 2).
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+// Close enough to be a misspelling: at most 2 edits, and fewer than half the name.
+bool nearName(const std::string& a, const std::string& b) {
+  const std::size_t d = editDistance(a, b);
+  return d > 0 && d <= 2 && 2 * d < std::max(a.size(), b.size());
+}
+}  // namespace
+
+std::string ConfigNode::nearUnknownKey(const std::string& key) const {
+  if (!node_.IsMap()) return "";
+  for (auto it = node_.begin(); it != node_.end(); ++it) {
+    if (!it->first.IsScalar()) continue;
+    const std::string k = it->first.Scalar();
+    if (!used_.count(k) && nearName(k, key)) return k;
+  }
+  return "";
+}
 
 std::string ConfigNode::keyPath(const std::string& key) const {
   return path_.empty() ? key : path_ + "." + key;
 }
 
 void ConfigNode::fail(const std::string& key, const std::string& what) const {
-  throw InputError(file_ + ": key '" + keyPath(key) + "': " + what);
+  // A required key that is missing because it was misspelt: report the misspelling.
+  if (what.rfind("is required", 0) == 0) {
+    const std::string typo = nearUnknownKey(key);
+    if (!typo.empty()) {
+      throw InputError(file_ + ": key '" + keyPath(typo) + "': unknown key (did you mean '" +
+                       keyPath(key) + "'?)");
+    }
+  }
+  std::string origin;
+  if (overrides_) {  // the override that set this key or a map above it
+    for (std::string p = keyPath(key);; p = p.substr(0, p.rfind('.'))) {
+      const auto o = overrides_->find(p);
+      if (o != overrides_->end()) {
+        origin = " (set by the override '" + o->second + "')";
+        break;
+      }
+      if (p.find('.') == std::string::npos) break;
+    }
+  }
+  throw InputError(file_ + ": key '" + keyPath(key) + "': " + what + origin);
 }
 
 bool ConfigNode::has(const std::string& key) const {
@@ -93,10 +149,10 @@ ConfigNode ConfigNode::map(const std::string& key, bool required) {
   YAML::Node n = scalarOrNull(key);
   if (!n.IsDefined() || n.IsNull()) {
     if (required) fail(key, "is required");
-    return ConfigNode(YAML::Node(YAML::NodeType::Map), file_, keyPath(key));
+    return ConfigNode(YAML::Node(YAML::NodeType::Map), file_, keyPath(key), overrides_);
   }
   if (!n.IsMap()) fail(key, "must be a map of keys, got " + shown(n));
-  return ConfigNode(n, file_, keyPath(key));
+  return ConfigNode(n, file_, keyPath(key), overrides_);
 }
 
 std::vector<ConfigNode> ConfigNode::mapList(const std::string& key) {
@@ -106,7 +162,7 @@ std::vector<ConfigNode> ConfigNode::mapList(const std::string& key) {
   if (!n.IsSequence()) fail(key, "must be a list, got " + shown(n));
   for (std::size_t i = 0; i < n.size(); ++i) {
     if (!n[i].IsMap()) fail(key, "entry " + std::to_string(i) + " must be a map");
-    out.emplace_back(n[i], file_, keyPath(key) + "[" + std::to_string(i) + "]");
+    out.emplace_back(n[i], file_, keyPath(key) + "[" + std::to_string(i) + "]", overrides_);
   }
   return out;
 }
@@ -234,7 +290,15 @@ void ConfigNode::finish() const {
     }
     const std::string k = it->first.Scalar();
     if (!used_.count(k)) {
-      throw InputError(file_ + ": key '" + keyPath(k) + "': unknown key");
+      std::string hint;
+      for (const std::string& known : used_)
+        if (nearName(k, known)) hint = " (did you mean '" + keyPath(known) + "'?)";
+      std::string origin;
+      if (overrides_) {
+        const auto o = overrides_->find(keyPath(k));
+        if (o != overrides_->end()) origin = " (set by the override '" + o->second + "')";
+      }
+      throw InputError(file_ + ": key '" + keyPath(k) + "': unknown key" + hint + origin);
     }
   }
 }

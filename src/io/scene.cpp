@@ -3,6 +3,8 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <map>
+#include <memory>
 #include <random>
 
 #include "crane_twin/io/config_reader.hpp"
@@ -34,8 +36,12 @@ std::string resolveCraneFile(const std::string& scene_path, const std::string& n
 
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
   YAML::Node yaml = loadYamlFile(path);
-  for (const auto& o : overrides) applyOverride(yaml, o);
-  ConfigNode root(yaml, path);
+  auto origins = std::make_shared<std::map<std::string, std::string>>();
+  for (const auto& o : overrides) {
+    applyOverride(yaml, o);
+    (*origins)[o.substr(0, o.find('='))] = o;  // the last one wins, as in the YAML
+  }
+  ConfigNode root(yaml, path, "", origins);
   Scene s;
   s.file = path;
 

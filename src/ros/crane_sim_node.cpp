@@ -391,12 +391,25 @@ void CraneSimNode::publish() {
     clock_pub_.publish(c);
   }
   joint_pub_.publish(toJointState(s, st));
-  tf_.sendTransform(toTransforms(s, st, frames_));
+  tf_.sendTransform(toTransforms(s, st + tf_stamp_offset_, frames_));
   marker_pub_.publish(toMarkers(s, st, 1.5, frames_));
   last_state_ =
       toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model, frames_);
   state_pub_.publish(last_state_);
   last_state_wall_ = now;
+}
+
+void CraneSimNode::publishPaused() {
+  if (settings_.publish_clock || settings_.follow_clock) {
+    // Simulated time stands still (the clock we own is republished frozen): TF 1 ns further on
+    // each time, at most half a step, so the next step's stamps still come after.
+    const ros::Duration ns(0, 1);
+    if (tf_stamp_offset_ + ns < ros::Duration(0.5 * model_.scene.time_step)) tf_stamp_offset_ += ns;
+  } else {
+    // Stamps are wall time: the frozen state is valid now, and the run resumes from here.
+    stamp_origin_ = ros::Time::now() - ros::Duration(sim_->time());
+  }
+  publish();
 }
 
 void CraneSimNode::publishDiagnostics() {
@@ -512,6 +525,12 @@ void CraneSimNode::run() {
     const bool running = !paused_ && !finished_ && !failed_ && !awaiting_recorder_;
     if (!running) {
       was_running = false;
+      // Paused as in gazebo_ros: the frozen state keeps coming at ~publish_rate of wall time.
+      if (paused_ && !finished_ && !failed_ &&
+          (now - last_paused_publish_).toSec() >= period) {
+        last_paused_publish_ = now;
+        publishPaused();
+      }
       if (finished_ && settings_.shutdown_at_end) {
         // A recorder still has our last messages in flight: give it a second to write them.
         if (!settings_.wait_for_recorder.empty()) {
@@ -527,6 +546,7 @@ void CraneSimNode::run() {
       continue;
     }
     if (!was_running) {  // (re)start pacing after a pause or reset
+      tf_stamp_offset_ = ros::Duration(0.0);
       anchor_wall = now;
       anchor_sim = sim_->time();
       was_running = true;

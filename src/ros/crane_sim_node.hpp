@@ -83,6 +83,11 @@ class CraneSimNode {
   std::vector<ros::Subscriber> follower_subs_;
   std::vector<double> follower_t_;  ///< latest simulated time of each clock follower [s]
   CraneState last_state_;           ///< the last crane/state published
+  /// While paused under simulated time: TF stamps step by 1 ns a publication past the frozen
+  /// clock (tf2 drops a transform whose stamp repeats).
+  ros::Duration tf_stamp_offset_;
+  ros::WallTime last_paused_publish_;
+  void publishPaused();
   ros::WallTime last_state_wall_;   ///< when it was last (re)published
   ros::Publisher joint_pub_, state_pub_, marker_pub_, clock_pub_, diag_pub_, applied_pub_;
   ros::ServiceServer reset_srv_, pause_srv_;

@@ -212,8 +212,22 @@ TEST(CraneSimNode, PauseHoldsAndResetRestarts) {
   EXPECT_TRUE(pause.response.success);
   ros::WallDuration(0.3).sleep();
   const double t_paused = latest().t;
+  // A TF listener started during the pause still finds the payload (the frozen state keeps
+  // being published, as gazebo_ros does).
+  {
+    tf2_ros::Buffer buffer;
+    tf2_ros::TransformListener listener(buffer);
+    std::string error;
+    EXPECT_TRUE(buffer.canTransform("world", "payload", ros::Time(0), ros::Duration(2.0), &error))
+        << error;
+  }
+  const size_t before = stateCount();
   ros::WallDuration(1.0).sleep();
   EXPECT_EQ(latest().t, t_paused);
+  // crane/state at ~publish_rate (30 Hz) of wall time while paused.
+  const size_t during = stateCount() - before;
+  EXPECT_GT(during, 20u);
+  EXPECT_LT(during, 45u);
   pause.request.data = false;
   ASSERT_TRUE(ros::service::call("/crane_sim_node/pause", pause));
   ros::WallDuration(1.0).sleep();

@@ -10,6 +10,8 @@
 
 #include <Eigen/Dense>
 #include <limits>
+#include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -39,7 +41,10 @@ YAML::Node loadYamlFile(const std::string& path);
 
 class ConfigNode {
  public:
-  ConfigNode(YAML::Node node, std::string file, std::string path = "");
+  /// `overrides`: key path -> the `key=value` that set it (a message about such a key names the
+  /// override, not only the file).
+  ConfigNode(YAML::Node node, std::string file, std::string path = "",
+             std::shared_ptr<const std::map<std::string, std::string>> overrides = nullptr);
 
   const std::string& file() const { return file_; }
   const std::string& path() const { return path_; }
@@ -72,6 +77,9 @@ class ConfigNode {
   std::string file_;
   std::string path_;
   mutable std::set<std::string> used_;
+  std::shared_ptr<const std::map<std::string, std::string>> overrides_;
+  /// An unknown key of this map within a small edit distance of `key`, or "".
+  std::string nearUnknownKey(const std::string& key) const;
 };
 
 /// Apply a `--set a.b.c=value` override: value parsed as YAML, intermediate maps created.
