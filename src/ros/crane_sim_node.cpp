@@ -172,9 +172,10 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   awaiting_recorder_ = !settings_.wait_for_recorder.empty();
   loadReplay();
   resetSimulation();
-  joint_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 10);
+  // Queues for bursts: as fast as possible a recorder takes every publication.
+  joint_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 1000);
   state_pub_ = nh_.advertise<CraneState>("crane/state", 1000);  // rtf 0: bursts
-  marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("crane/rope", 5);
+  marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("crane/rope", 200);
   applied_pub_ = nh_.advertise<CraneCommand>("crane/command_applied", 50, true);
   diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 5);
   if (settings_.publish_clock) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
@@ -498,7 +499,7 @@ bool CraneSimNode::recorderSubscribed(std::string& missing) const {
 
 void CraneSimNode::run() {
   const double dt = model_.scene.time_step, period = 1.0 / settings_.publish_rate;
-  publish();
+  if (!awaiting_recorder_) publish();  // else once the recorder listens: the bag starts at t = 0
   next_publish_ = sim_->time() + period;
   ros::WallTime anchor_wall = ros::WallTime::now();
   double anchor_sim = sim_->time();
@@ -516,6 +517,7 @@ void CraneSimNode::run() {
       if (recorderSubscribed(missing)) {
         awaiting_recorder_ = false;
         ROS_INFO("crane_sim_node: %s is recording; starting", settings_.wait_for_recorder.c_str());
+        publish();
       } else if ((now - last_warn_wall_).toSec() >= 5.0) {
         last_warn_wall_ = now;
         ROS_WARN("crane_sim_node: waiting for %s to subscribe to%s",
