@@ -68,9 +68,14 @@ def main():
                 f.write(row(s, steps) + "\n")
     states = [s for s, _ in states]
     if a.commands:
+        # Commands applied at the same simulated time (one sent during a pause and the start's
+        # own): the last applied is the one in force, and a schedule's times must increase.
+        last = {}
+        for c in commands:  # in the order the node applied them (the bag's order)
+            last[c.header.stamp.to_sec()] = c
         entries = ["{t: %r, slew_rate: %r, trolley_speed: %r, hoist_speed: %r}" %
-                   (c.header.stamp.to_sec(), c.slew_rate, c.trolley_speed, c.hoist_speed)
-                   for c in sorted(commands, key=lambda c: c.header.stamp.to_sec())]
+                   (t, c.slew_rate, c.trolley_speed, c.hoist_speed)
+                   for t, c in sorted(last.items())]
         with open(a.commands, "w") as f:
             f.write("[" + ", ".join(entries) + "]\n")
     if a.stats:

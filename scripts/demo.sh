@@ -42,9 +42,11 @@ for _ in $(seq 50); do [ -f "$OUT/demo.bag" ] && break; sleep 0.2; done
   rosbag info "$OUT/demo.bag" | grep -E "duration|messages|topics|^ +/"
   echo "# node statistics (crane/state): scripts/bag_to_series.py demo.bag --stats"
   cat "$OUT/node_stats.txt"
+  # A row every step, as the node's states fall on steps.
+  STEP=$(/usr/bin/python3 -c "import sys, yaml; print(yaml.safe_load(open(sys.argv[1]))['time_step'])" "$SCENE")
   echo "# the node's applied commands replayed at full order by crane_sim:"
-  echo "#   crane_sim run $SCENE --set duration=$DURATION --set rope.model=full --set output_interval=0.001 --set commands=<commands.yaml>"
-  "$SIM" run "$SCENE" --set duration="$DURATION" --set rope.model=full --set output_interval=0.001 \
+  echo "#   crane_sim run $SCENE --set duration=$DURATION --set rope.model=full --set output_interval=$STEP --set commands=<commands.yaml>"
+  "$SIM" run "$SCENE" --set duration="$DURATION" --set rope.model=full --set output_interval="$STEP" \
     --set "commands=$(cat "$OUT/commands.yaml")" --out "$OUT/cli_full.csv" --quiet
   echo "# crane_sim compare node_reduced.csv cli_full.csv (error metrics of" \
     "docs/accuracy-vs-time.md at the node's output times)"
