@@ -7,6 +7,7 @@
 #include <rosbag/view.h>
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/JointState.h>
+#include <std_msgs/Bool.h>
 
 #include <algorithm>
 #include <chrono>
@@ -189,6 +190,8 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   }
   static_tf_.sendTransform(toBaseTransform(frames_, base, yaw, ros::Time::now()));
   command_sub_ = nh_.subscribe("crane/command", 20, &CraneSimNode::onCommand, this);
+  trajectory_sub_ = nh_.subscribe("crane/joint_trajectory", 5, &CraneSimNode::onTrajectory, this);
+  goal_pub_ = nh_.advertise<std_msgs::Bool>("crane/goal_reached", 1, true);
   follower_t_.assign(settings_.clock_followers.size(), -std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < settings_.clock_followers.size(); ++i) {
     follower_subs_.push_back(nh_.subscribe<CraneState>(
@@ -304,6 +307,62 @@ void CraneSimNode::onCommand(const CraneCommand::ConstPtr& msg) {
   }
   if (v.over_limit) warnThrottled("command above a speed limit: " + v.reason);
   watchdog_.received(sim_->time());
+  if (follower_.active()) {  // a rate command takes over from a goal
+    follower_.cancel();
+    ROS_INFO("crane_sim_node: trajectory cancelled by a rate command on crane/command");
+  }
+}
+
+void CraneSimNode::onTrajectory(const trajectory_msgs::JointTrajectory::ConstPtr& msg) {
+  auto reject = [&](const std::string& why) {
+    ++rejected_;
+    ROS_WARN("crane_sim_node: trajectory rejected: %s", why.c_str());
+  };
+  if (!settings_.command_bag.empty()) return reject("replaying a bag");
+  if (failed_) return reject("the simulation stopped (" + failure_ + "); call ~reset");
+  if (!model_.scene.crane) return reject("the scene has no crane (crane: none)");
+  int index[3] = {-1, -1, -1};
+  for (std::size_t j = 0; j < msg->joint_names.size(); ++j) {
+    int a = -1;
+    for (int k = 0; k < 3; ++k)
+      if (msg->joint_names[j] == kJointNames[k]) a = k;
+    if (a < 0) return reject("unknown joint '" + msg->joint_names[j] + "' (slew, trolley, hoist)");
+    if (index[a] >= 0) return reject("joint '" + msg->joint_names[j] + "' named twice");
+    index[a] = static_cast<int>(j);
+  }
+  std::vector<TrajectoryPoint> points;
+  for (std::size_t k = 0; k < msg->points.size(); ++k) {
+    const auto& p = msg->points[k];
+    if (p.positions.size() != msg->joint_names.size()) {
+      return reject("point " + std::to_string(k) + " has " + std::to_string(p.positions.size()) +
+                    " positions for " + std::to_string(msg->joint_names.size()) + " joints");
+    }
+    TrajectoryPoint q;
+    q.time_from_start = p.time_from_start.toSec();
+    for (int a = 0; a < 3; ++a)
+      if (index[a] >= 0) q.target[a] = p.positions[index[a]];
+    points.push_back(q);
+  }
+  const std::string why = TrajectoryFollower::validate(points, *model_.scene.crane);
+  if (!why.empty()) return reject(why);
+  follower_.start(std::move(points), sim_->time());
+  std_msgs::Bool b;
+  b.data = false;
+  goal_pub_.publish(b);
+  ROS_INFO("crane_sim_node: following a trajectory of %zu points", msg->points.size());
+}
+
+void CraneSimNode::followTrajectory() {
+  if (!follower_.active()) return;
+  const CommandEntry c = follower_.command(sim_->time(), sim_->drives(), *model_.scene.crane);
+  sim_->setCommand(c);
+  watchdog_.received(sim_->time());
+  if (!follower_.active() && follower_.reached()) {
+    std_msgs::Bool b;
+    b.data = true;
+    goal_pub_.publish(b);
+    ROS_INFO("crane_sim_node: trajectory reached at t = %g s", sim_->time());
+  }
 }
 
 bool CraneSimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
@@ -345,6 +404,7 @@ void CraneSimNode::applyDueCommands() {
 
 bool CraneSimNode::stepOnce() {
   applyDueCommands();
+  followTrajectory();
   const auto t0 = std::chrono::steady_clock::now();
   try {
     sim_->step();

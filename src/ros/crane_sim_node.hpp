@@ -8,6 +8,7 @@
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/static_transform_broadcaster.h>
+#include <trajectory_msgs/JointTrajectory.h>
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <deque>
@@ -17,6 +18,7 @@
 
 #include "crane_twin/CraneCommand.h"
 #include "crane_twin/drives/command_guard.hpp"
+#include "crane_twin/drives/trajectory_follower.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/analysis/crane_snapshot.hpp"
 #include "crane_twin/simulation/simulation.hpp"
@@ -79,7 +81,12 @@ class CraneSimNode {
   std::deque<Replayed> replay_;  ///< commands still to apply, by simulated time
   std::vector<Replayed> replay_all_;
 
-  ros::Subscriber command_sub_;
+  ros::Subscriber command_sub_, trajectory_sub_;
+  ros::Publisher goal_pub_;
+  TrajectoryFollower follower_;
+  void onTrajectory(const trajectory_msgs::JointTrajectory::ConstPtr& msg);
+  /// The follower's rate command for this step; crane/goal_reached when it is done.
+  void followTrajectory();
   std::vector<ros::Subscriber> follower_subs_;
   std::vector<double> follower_t_;  ///< latest simulated time of each clock follower [s]
   CraneState last_state_;           ///< the last crane/state published
