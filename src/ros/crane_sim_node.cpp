@@ -200,6 +200,7 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   }
   reset_srv_ = pnh_.advertiseService("reset", &CraneSimNode::onReset, this);
   pause_srv_ = pnh_.advertiseService("pause", &CraneSimNode::onPause, this);
+  payload_srv_ = pnh_.advertiseService("set_payload", &CraneSimNode::onSetPayload, this);
   const bool ancf = model_.scene.rope.model != "pendulum";
   ROS_INFO("crane_sim_node: scene %s, rope model %s%s%s, time step %g s, "
            "real_time_factor %g%s%s",
@@ -241,14 +242,20 @@ void CraneSimNode::loadReplay() {
 }
 
 void CraneSimNode::resetSimulation() {
+  t_offset_ = 0.0;
+  restartSimulation();
+  replay_.assign(replay_all_.begin(), replay_all_.end());
+  stamp_origin_ =
+      settings_.publish_clock || settings_.follow_clock ? ros::Time(0) : ros::Time::now();
+}
+
+void CraneSimNode::restartSimulation() {
   sim_ = makeSimulation(model_);
   sim_->initialize();
-  replay_.assign(replay_all_.begin(), replay_all_.end());
+  follower_.cancel();
   watchdog_ = CommandWatchdog(settings_.command_timeout);
   finished_ = failed_ = false;
   failure_.clear();
-  stamp_origin_ =
-      settings_.publish_clock || settings_.follow_clock ? ros::Time(0) : ros::Time::now();
   next_publish_ = sim_->time();
   last_publish_sim_ = sim_->time();
   last_publish_wall_ = ros::WallTime::now();
@@ -257,7 +264,7 @@ void CraneSimNode::resetSimulation() {
 }
 
 ros::Time CraneSimNode::stamp(double t) const {
-  return stamp_origin_ + ros::Duration(t);
+  return stamp_origin_ + ros::Duration(t_offset_ + t);
 }
 
 void CraneSimNode::warnThrottled(const std::string& what) {
@@ -272,7 +279,7 @@ void CraneSimNode::warnThrottled(const std::string& what) {
 void CraneSimNode::apply(const CommandEntry& c, const char* source) {
   sim_->setCommand(c);
   CraneCommand m;
-  m.header.stamp = ros::Time(sim_->time());
+  m.header.stamp = ros::Time(t_offset_ + sim_->time());
   m.header.frame_id = source;
   m.slew_rate = c.slew_rate;
   m.trolley_speed = c.trolley_speed;
@@ -366,6 +373,20 @@ void CraneSimNode::followTrajectory() {
 }
 
 bool CraneSimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+  // ~overrides and ~real_time_factor are read again (docs/ros.md); if they are bad the running
+  // simulation goes on and the reply says why.
+  NodeSettings fresh;
+  try {
+    fresh = readNodeSettings(pnh_);
+    model_ = buildCraneModel(loadScene(fresh.scene, fresh.overrides));
+  } catch (const std::exception& e) {
+    res.success = false;
+    res.message = std::string("reset refused, the run goes on: ") + e.what();
+    return true;
+  }
+  settings_.overrides = fresh.overrides;
+  settings_.real_time_factor = fresh.real_time_factor;
+  if (fresh.duration < 0.0) settings_.duration = model_.scene.duration;
   try {
     resetSimulation();
     res.success = true;
@@ -376,6 +397,60 @@ bool CraneSimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Respo
     res.success = false;
     res.message = std::string("reset failed: ") + e.what();
   }
+  publish();
+  next_publish_ = sim_->time() + 1.0 / settings_.publish_rate;
+  return true;
+}
+
+bool CraneSimNode::onSetPayload(SetPayload::Request& req, SetPayload::Response& res) {
+  res.success = false;
+  if (!std::isfinite(req.mass) || req.mass < 0.0) {
+    res.message = "mass must be a finite number of kg >= 0, got " + std::to_string(req.mass);
+    return true;
+  }
+  if (!settings_.command_bag.empty()) {
+    res.message = "refused while replaying a bag (the recorded run's load is part of it)";
+    return true;
+  }
+  const CraneDrives& d = sim_->drives();
+  if (d.slewRate() != 0.0 || d.trolleySpeed() != 0.0 || d.hoistSpeed() != 0.0) {
+    res.message = "stop the drives first: a load is picked up at rest";
+    return true;
+  }
+  // The new load hangs in static equilibrium where the crane stands (docs/ros.md).
+  std::vector<std::string> o = settings_.overrides;
+  std::ostringstream v;
+  v.precision(17);
+  v << "payload.mass=" << req.mass;
+  o.push_back(v.str());
+  if (model_.scene.crane) {
+    v.str("");
+    v << "slewing.angle=" << d.slewAngle();
+    o.push_back(v.str());
+    v.str("");
+    v << "trolley.radius=" << d.trolleyRadius();
+    o.push_back(v.str());
+    v.str("");
+    v << "rope.length=" << d.hoistLength();
+    o.push_back(v.str());
+  }
+  for (const char* s : {"initial.mode=equilibrium", "initial.swing_deg=0",
+                        "initial.payload_velocity=[0, 0, 0]", "commands=[]"})
+    o.push_back(s);
+  try {
+    CraneModel m = buildCraneModel(loadScene(settings_.scene, o));
+    const double t = t_offset_ + sim_->time();
+    model_ = std::move(m);
+    t_offset_ = t;
+    restartSimulation();
+  } catch (const std::exception& e) {
+    res.message = std::string("refused: ") + e.what();
+    return true;
+  }
+  ROS_INFO("crane_sim_node: payload set to %g kg at t = %g s", req.mass, t_offset_);
+  res.success = true;
+  res.message = "payload " + std::to_string(req.mass) + " kg, in equilibrium at t = " +
+                std::to_string(t_offset_) + " s";
   publish();
   next_publish_ = sim_->time() + 1.0 / settings_.publish_rate;
   return true;
@@ -456,6 +531,7 @@ void CraneSimNode::publish() {
   marker_pub_.publish(toMarkers(s, st, 1.5, frames_));
   last_state_ =
       toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model, frames_);
+  last_state_.t += t_offset_;
   state_pub_.publish(last_state_);
   last_state_wall_ = now;
 }
@@ -657,7 +733,7 @@ void CraneSimNode::run() {
     }
     while (sim_->time() + 0.5 * dt <= target) {
       if (!stepOnce()) break;
-      if (settings_.duration > 0.0 && sim_->time() >= settings_.duration - 0.5 * dt) {
+      if (settings_.duration > 0.0 && t_offset_ + sim_->time() >= settings_.duration - 0.5 * dt) {
         finished_ = true;
         ROS_INFO("crane_sim_node: end of scene at t = %g s", sim_->time());
         break;

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "crane_twin/CraneCommand.h"
+#include "crane_twin/SetPayload.h"
 #include "crane_twin/drives/command_guard.hpp"
 #include "crane_twin/drives/trajectory_follower.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
@@ -97,7 +98,12 @@ class CraneSimNode {
   void publishPaused();
   ros::WallTime last_state_wall_;   ///< when it was last (re)published
   ros::Publisher joint_pub_, state_pub_, marker_pub_, clock_pub_, diag_pub_, applied_pub_;
-  ros::ServiceServer reset_srv_, pause_srv_;
+  ros::ServiceServer reset_srv_, pause_srv_, payload_srv_;
+  /// Simulated time before the current simulation started [s] (a load change runs time on).
+  double t_offset_ = 0.0;
+  bool onSetPayload(SetPayload::Request& req, SetPayload::Response& res);
+  /// A new simulation of model_ from t_offset_ on, keeping the stamps' origin.
+  void restartSimulation();
   tf2_ros::TransformBroadcaster tf_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   CraneFrames frames_;

@@ -13,8 +13,14 @@
 #include <string>
 #include <vector>
 
+#include <sensor_msgs/JointState.h>
+#include <std_srvs/Trigger.h>
+
 #include "crane_twin/CraneCommand.h"
 #include "crane_twin/CraneState.h"
+#include "crane_twin/SetPayload.h"
+#include "crane_twin/io/scene.hpp"
+#include "crane_twin/simulation/crane_model.hpp"
 #include "subscribe.hpp"
 
 namespace {
@@ -22,6 +28,8 @@ std::mutex mtx;
 std::vector<crane_twin::CraneState> states;
 int goal_true = 0, goal_false = 0;
 int rejected = -1;
+double hoist_effort = 0.0;
+std::string scene_file;
 ros::Publisher *trajectory_pub = nullptr, *command_pub = nullptr;
 using crane_twin_test::waitFor;
 
@@ -102,6 +110,71 @@ TEST(Goals, BadTrajectoriesAreRefusedAndARateCommandCancelsAGoal) {
   EXPECT_EQ(goal_true, 1);  // only the first goal was reached
 }
 
+// Static top tension of the live scene with this payload: (end mass + rope mass) g, the end
+// mass being payload and hook block (the model's own bookkeeping of the scene's masses).
+double hangingWeight(double payload) {
+  const crane_twin::CraneModel m = crane_twin::buildCraneModel(crane_twin::loadScene(
+      scene_file, {"rope.elements=40", "payload.mass=" + std::to_string(payload)}));
+  return (m.end_mass + m.ropeMass()) * m.scene.gravity;
+}
+
+double effort() {
+  std::lock_guard<std::mutex> l(mtx);
+  return hoist_effort;
+}
+
+TEST(Payload, SetPayloadAndResetChangeTheLoadWithoutARestart) {
+  // Refused while a drive moves.
+  crane_twin::CraneCommand move;
+  move.trolley_speed = 0.5;
+  command_pub->publish(move);
+  ASSERT_TRUE(waitFor([] { return std::abs(latest().trolley_speed) > 0.1; }, 10.0));
+  crane_twin::SetPayload sp;
+  sp.request.mass = 2000.0;
+  ASSERT_TRUE(ros::service::call("/crane_sim_node/set_payload", sp));
+  EXPECT_FALSE(sp.response.success);
+  EXPECT_NE(sp.response.message.find("stop the drives"), std::string::npos) << sp.response.message;
+  command_pub->publish(crane_twin::CraneCommand());
+  ASSERT_TRUE(waitFor([] { const auto s = latest(); return s.trolley_speed == 0.0 && s.slew_rate == 0.0; }, 20.0));
+  // A bad mass is refused and named.
+  sp.request.mass = -3.0;
+  ASSERT_TRUE(ros::service::call("/crane_sim_node/set_payload", sp));
+  EXPECT_FALSE(sp.response.success);
+  EXPECT_NE(sp.response.message.find("-3"), std::string::npos) << sp.response.message;
+  // 2 t: the hoist effort (top tension) becomes the new hanging weight within 1 %, simulated
+  // time runs on, the crane stays where it stood.
+  const crane_twin::CraneState before = latest();
+  sp.request.mass = 2000.0;
+  ASSERT_TRUE(ros::service::call("/crane_sim_node/set_payload", sp));
+  ASSERT_TRUE(sp.response.success) << sp.response.message;
+  ros::WallDuration(0.5).sleep();
+  const crane_twin::CraneState after = latest();
+  EXPECT_GT(after.t, before.t);
+  EXPECT_NEAR(after.trolley_radius, before.trolley_radius, 1e-6);
+  EXPECT_NEAR(after.slew_angle, before.slew_angle, 1e-9);
+  const double w2 = hangingWeight(2000.0);
+  EXPECT_NEAR(effort(), w2, 0.01 * w2);
+  // ~reset reads ~overrides again: 1.5 t.
+  ros::param::set("/crane_sim_node/overrides",
+                  std::vector<std::string>{"rope.elements=40", "payload.mass=1500"});
+  std_srvs::Trigger reset;
+  const double t_before_reset = latest().t;
+  ASSERT_TRUE(ros::service::call("/crane_sim_node/reset", reset));
+  ASSERT_TRUE(reset.response.success) << reset.response.message;
+  ros::WallDuration(0.5).sleep();
+  const double w15 = hangingWeight(1500.0);
+  EXPECT_NEAR(effort(), w15, 0.02 * w15);  // the live scene's 2.3 deg release swings
+  EXPECT_LT(latest().t, t_before_reset);  // back to t = 0 (then 0.5 s at 10x)
+  // A bad override: the reset is refused, naming it, and the run goes on.
+  ros::param::set("/crane_sim_node/overrides", std::vector<std::string>{"payload.mas=1"});
+  ASSERT_TRUE(ros::service::call("/crane_sim_node/reset", reset));
+  EXPECT_FALSE(reset.response.success);
+  EXPECT_NE(reset.response.message.find("payload.mas"), std::string::npos) << reset.response.message;
+  const double t0 = latest().t;
+  ros::WallDuration(0.5).sleep();
+  EXPECT_GT(latest().t, t0);
+}
+
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   ros::init(argc, argv, "goals_test");
@@ -119,6 +192,12 @@ int main(int argc, char** argv) {
       nh, "crane/goal_reached", 10, [](const std_msgs::Bool::ConstPtr& m) {
         std::lock_guard<std::mutex> l(mtx);
         ++(m->data ? goal_true : goal_false);
+      });
+  ros::NodeHandle("~").getParam("scene", scene_file);
+  ros::Subscriber j = crane_twin_test::subscribe<sensor_msgs::JointState>(
+      nh, "joint_states", 10, [](const sensor_msgs::JointState::ConstPtr& m) {
+        std::lock_guard<std::mutex> l(mtx);
+        if (m->effort.size() == 3) hoist_effort = m->effort[2];
       });
   ros::Subscriber c = crane_twin_test::subscribe<diagnostic_msgs::DiagnosticArray>(
       nh, "/diagnostics", 10, [](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
