@@ -13,7 +13,7 @@ source "$ROOT/scripts/ros_env.sh"
 ensure_ros_master /dev/null
 rm -f "$OUT"
 roslaunch crane_twin sim.launch rviz:=false record:=true bag:="$OUT" \
-  record_topics:="/crane/state /crane/command /crane/command_applied" \
+  record_topics:="/crane/state /crane/command /crane/command_applied" record_markers:=false \
   overrides:="[rope.model=full]" duration:=20 shutdown_at_end:=true start_paused:=true \
   publish_clock:=true &
 LAUNCH=$!
