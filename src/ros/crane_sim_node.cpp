@@ -699,6 +699,14 @@ void CraneSimNode::run() {
           last_warn_wall_ = now;
           ROS_WARN("crane_sim_node: waiting for the clock's followers to publish their state");
         }
+        // A follower waits for the clock while we wait for it: a clock message sent before its
+        // subscription connected is lost, so repeat the clock now and then.
+        if ((now - last_clock_wall_).toSec() >= 0.2) {
+          rosgraph_msgs::Clock c;
+          c.clock = stamp(sim_->time());
+          clock_pub_.publish(c);
+          last_clock_wall_ = now;
+        }
         ros::WallDuration(0.0005).sleep();
         continue;
       }

@@ -97,6 +97,7 @@ class CraneSimNode {
   ros::WallTime last_paused_publish_;
   void publishPaused();
   ros::WallTime last_state_wall_;   ///< when it was last (re)published
+  ros::WallTime last_clock_wall_;   ///< when /clock was last repeated while waiting (lockstep)
   ros::Publisher joint_pub_, state_pub_, marker_pub_, clock_pub_, diag_pub_, applied_pub_;
   ros::ServiceServer reset_srv_, pause_srv_, payload_srv_;
   /// Simulated time before the current simulation started [s] (a load change runs time on).
