@@ -544,7 +544,7 @@ void CraneSimNode::publishPaused() {
     if (tf_stamp_offset_ + ns < ros::Duration(0.5 * model_.scene.time_step)) tf_stamp_offset_ += ns;
   } else {
     // Stamps are wall time: the frozen state is valid now, and the run resumes from here.
-    stamp_origin_ = ros::Time::now() - ros::Duration(sim_->time());
+    stamp_origin_ = ros::Time::now() - ros::Duration(t_offset_ + sim_->time());
   }
   publish();
 }
@@ -692,8 +692,9 @@ void CraneSimNode::run() {
     double target = next_publish_;
     if (!follower_t_.empty()) {
       // Lockstep with the clock's followers (docs/site.md): at most 2.5 periods ahead.
+      // Followers report total simulated time; ours runs from t_offset_ (a load change).
       const double slowest = *std::min_element(follower_t_.begin(), follower_t_.end());
-      target = std::min(target, slowest + 2.5 * period);
+      target = std::min(target, slowest - t_offset_ + 2.5 * period);
       if (sim_->time() + 0.5 * dt > target) {
         if ((now - last_warn_wall_).toSec() >= 5.0 && !std::isfinite(slowest)) {
           last_warn_wall_ = now;
@@ -712,8 +713,8 @@ void CraneSimNode::run() {
       }
     }
     if (settings_.follow_clock) {
-      // Keep up with the owner of /clock (stamps are simulated time from 0).
-      target = std::min(target, ros::Time::now().toSec());
+      // Keep up with the owner of /clock (stamps are simulated time from 0, ours from t_offset_).
+      target = std::min(target, ros::Time::now().toSec() - t_offset_);
       if (sim_->time() + 0.5 * dt > target) {
         // Waiting for the clock: the owner may be waiting for our state (lockstep), and a
         // message sent before its subscription connected is lost, so repeat it now and then.

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include <sensor_msgs/JointState.h>
+#include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
 
 #include "crane_twin/CraneCommand.h"
@@ -154,6 +155,15 @@ TEST(Payload, SetPayloadAndResetChangeTheLoadWithoutARestart) {
   EXPECT_NEAR(after.slew_angle, before.slew_angle, 1e-9);
   const double w2 = hangingWeight(2000.0);
   EXPECT_NEAR(effort(), w2, 0.01 * w2);
+  // Paused after the change, the frozen state is stamped with the wall time now (stamps are
+  // wall time in this scene), whatever time ran before the load change.
+  std_srvs::SetBool pause;
+  pause.request.data = true;
+  ASSERT_TRUE(ros::service::call("/crane_sim_node/pause", pause));
+  ros::WallDuration(0.3).sleep();
+  EXPECT_NEAR((latest().header.stamp - ros::Time::now()).toSec(), 0.0, 0.2);
+  pause.request.data = false;
+  ASSERT_TRUE(ros::service::call("/crane_sim_node/pause", pause));
   // ~reset reads ~overrides again: 1.5 t.
   ros::param::set("/crane_sim_node/overrides",
                   std::vector<std::string>{"rope.elements=40", "payload.mass=1500"});
