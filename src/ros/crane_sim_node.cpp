@@ -1,8 +1,7 @@
 #include "crane_sim_node.hpp"
 
-#include <ros/master.h>
-
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <ros/master.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <rosgraph_msgs/Clock.h>
@@ -353,10 +352,14 @@ void CraneSimNode::onTrajectory(const trajectory_msgs::JointTrajectory::ConstPtr
   const std::string why = TrajectoryFollower::validate(points, *model_.scene.crane);
   if (!why.empty()) return reject(why);
   follower_.start(std::move(points), sim_->time());
-  std_msgs::Bool b;
-  b.data = false;
-  goal_pub_.publish(b);
+  publishGoalReached(false);
   ROS_INFO("crane_sim_node: following a trajectory of %zu points", msg->points.size());
+}
+
+void CraneSimNode::publishGoalReached(bool reached) {
+  std_msgs::Bool b;
+  b.data = reached;
+  goal_pub_.publish(b);
 }
 
 void CraneSimNode::followTrajectory() {
@@ -365,9 +368,7 @@ void CraneSimNode::followTrajectory() {
   sim_->setCommand(c);
   watchdog_.received(sim_->time());
   if (!follower_.active() && follower_.reached()) {
-    std_msgs::Bool b;
-    b.data = true;
-    goal_pub_.publish(b);
+    publishGoalReached(true);
     ROS_INFO("crane_sim_node: trajectory reached at t = %g s", sim_->time());
   }
 }
@@ -397,8 +398,7 @@ bool CraneSimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Respo
     res.success = false;
     res.message = std::string("reset failed: ") + e.what();
   }
-  publish();
-  next_publish_ = sim_->time() + 1.0 / settings_.publish_rate;
+  publishNow();
   return true;
 }
 
@@ -419,20 +419,17 @@ bool CraneSimNode::onSetPayload(SetPayload::Request& req, SetPayload::Response& 
   }
   // The new load hangs in static equilibrium where the crane stands (docs/ros.md).
   std::vector<std::string> o = settings_.overrides;
-  std::ostringstream v;
-  v.precision(17);
-  v << "payload.mass=" << req.mass;
-  o.push_back(v.str());
+  auto set = [&o](const char* key, double value) {
+    std::ostringstream v;
+    v.precision(17);
+    v << key << '=' << value;
+    o.push_back(v.str());
+  };
+  set("payload.mass", req.mass);
   if (model_.scene.crane) {
-    v.str("");
-    v << "slewing.angle=" << d.slewAngle();
-    o.push_back(v.str());
-    v.str("");
-    v << "trolley.radius=" << d.trolleyRadius();
-    o.push_back(v.str());
-    v.str("");
-    v << "rope.length=" << d.hoistLength();
-    o.push_back(v.str());
+    set("slewing.angle", d.slewAngle());
+    set("trolley.radius", d.trolleyRadius());
+    set("rope.length", d.hoistLength());
   }
   for (const char* s : {"initial.mode=equilibrium", "initial.swing_deg=0",
                         "initial.payload_velocity=[0, 0, 0]", "commands=[]"})
@@ -451,8 +448,7 @@ bool CraneSimNode::onSetPayload(SetPayload::Request& req, SetPayload::Response& 
   res.success = true;
   res.message = "payload " + std::to_string(req.mass) + " kg, in equilibrium at t = " +
                 std::to_string(t_offset_) + " s";
-  publish();
-  next_publish_ = sim_->time() + 1.0 / settings_.publish_rate;
+  publishNow();
   return true;
 }
 
@@ -536,6 +532,11 @@ void CraneSimNode::publish() {
   last_state_wall_ = now;
 }
 
+void CraneSimNode::publishNow() {
+  publish();
+  next_publish_ = sim_->time() + 1.0 / settings_.publish_rate;
+}
+
 void CraneSimNode::publishPaused() {
   if (settings_.publish_clock || settings_.follow_clock) {
     // Simulated time stands still (the clock we own is republished frozen): TF 1 ns further on
@@ -595,9 +596,6 @@ void CraneSimNode::publishDiagnostics() {
   diag_pub_.publish(a);
 }
 
-// Pacing: with real_time_factor f > 0, simulated time follows f x wall time from an anchor;
-// a lag of more than 0.25 s re-anchors (counted as an overrun) instead of racing to catch up.
-// With f = 0 the node steps from one publication to the next as fast as it can.
 bool CraneSimNode::recorderSubscribed(std::string& missing) const {
   // getSystemState: [publishers, subscribers, services], each [[name, [node, ...]], ...].
   XmlRpc::XmlRpcValue request, response, payload;
@@ -633,6 +631,9 @@ bool CraneSimNode::recorderSubscribed(std::string& missing) const {
   return missing.empty();
 }
 
+// Pacing: with real_time_factor f > 0, simulated time follows f x wall time from an anchor;
+// a lag of more than 0.25 s re-anchors (counted as an overrun) instead of racing to catch up.
+// With f = 0 the node steps from one publication to the next as fast as it can.
 void CraneSimNode::run() {
   const double dt = model_.scene.time_step, period = 1.0 / settings_.publish_rate;
   if (!awaiting_recorder_) publish();  // else once the recorder listens: the bag starts at t = 0

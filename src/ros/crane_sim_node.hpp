@@ -96,6 +96,9 @@ class CraneSimNode {
   ros::Duration tf_stamp_offset_;
   ros::WallTime last_paused_publish_;
   void publishPaused();
+  /// Publish at once and start the next publication period (after ~reset, ~set_payload).
+  void publishNow();
+  void publishGoalReached(bool reached);
   ros::WallTime last_state_wall_;   ///< when it was last (re)published
   ros::WallTime last_clock_wall_;   ///< when /clock was last repeated while waiting (lockstep)
   ros::Publisher joint_pub_, state_pub_, marker_pub_, clock_pub_, diag_pub_, applied_pub_;

@@ -61,8 +61,7 @@ void CraneSimulation::applyRopeLength(CoupledState& s) {
 }
 
 bool CraneSimulation::followHoistLength() {
-  if (!model_.scene.crane) return false;
-  const double to = drives_.hoistLength();
+  const double to = hoistTargetLength();
   if (to == rope_->length()) return false;
   rope_->setLength(to);
   solver_->refreshMass();

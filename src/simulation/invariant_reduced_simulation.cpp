@@ -190,10 +190,8 @@ void InvariantReducedSimulation::step() {
   const double h = full_.model().scene.time_step;
   full_.advanceDrives(state_.t, h);
   // Hoisting keeps y (header); the full rope follows only when it is needed (syncFullRope).
-  if (full_.model().scene.crane) {
-    const double to = full_.drives().hoistLength();
-    if (to != solver_->length()) solver_->setLength(to);
-  }
+  const double to = full_.hoistTargetLength();
+  if (to != solver_->length()) solver_->setLength(to);
   ++steps_;
   try {
     solver_->step(state_);
@@ -233,9 +231,9 @@ void InvariantReducedSimulation::sample(Eigen::Vector3d& payload, Eigen::Vector3
 }
 
 void InvariantReducedSimulation::syncFullRope() {
-  // The full model's rope (mass, weight, element length) at the reduced model's length, before
-  // anything reads it: a hand-over, the error indicator.
-  if (full_.followHoistLength()) solver_->refreshLength();
+  // The full model's rope (mass, weight, element length) at the reduced model's length (both
+  // the hoist's target, step), before anything reads it: a hand-over, the error indicator.
+  full_.followHoistLength();
 }
 
 double InvariantReducedSimulation::ropeLength() const {
@@ -247,19 +245,15 @@ std::vector<Eigen::Vector3d> InvariantReducedSimulation::ropeCurve(int per_eleme
 }
 
 SeriesValues InvariantReducedSimulation::series() const {
-  if (full_order_) {
-    SeriesValues v = full_.series();
-    v.subdomains = 1;
-    v.full_order_steps = full_order_steps_;
-    return v;
-  }
-  // From the reduced state: the end node, the Lagrange multiplier's tension and the reduced
-  // model's own energy (what its integrator conserves), without expanding the rope.
+  // Reduced: from the reduced state (the end node, the Lagrange multiplier's tension and the
+  // reduced model's own energy, what its integrator conserves), without expanding the rope.
   const int last = full_.ropeNodes() - 1;
-  SeriesValues v = full_.seriesWith(state_, solver_->nodePosition(state_.q, last),
-                                    solver_->nodePosition(state_.v, last),
-                                    solver_->topTension(state_), solver_->energy(state_),
-                                    solver_->length());
+  SeriesValues v =
+      full_order_ ? full_.series()
+                  : full_.seriesWith(state_, solver_->nodePosition(state_.q, last),
+                                     solver_->nodePosition(state_.v, last),
+                                     solver_->topTension(state_), solver_->energy(state_),
+                                     solver_->length());
   v.subdomains = 1;
   v.full_order_steps = full_order_steps_;
   return v;

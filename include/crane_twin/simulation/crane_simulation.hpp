@@ -46,6 +46,10 @@ class CraneSimulation final : public SupportedRopeSimulation {
   /// The rope (and the solver's mass) to the hoist drive's length, no state touched; true where
   /// the length changed (the reduced rope keeps its own coordinates through a length change).
   bool followHoistLength();
+  /// The rope length the hoist asks for [m] (the scene's rope when there is no crane).
+  double hoistTargetLength() const {
+    return model_.scene.crane ? drives_.hoistLength() : rope_->length();
+  }
 
   /// Continue from a full-coordinate state (the reduced model hands a slack rope over here).
   void setState(const CoupledState& s) { state_ = s; }
