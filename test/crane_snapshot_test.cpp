@@ -9,6 +9,7 @@
 #include "crane_twin/drives/command_guard.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
 #include "crane_twin/analysis/crane_snapshot.hpp"
+#include "crane_twin/analysis/load_shapes.hpp"
 #include "crane_twin/simulation/reduced_crane_simulation.hpp"
 #include "crane_twin/structure/structure_support.hpp"
 
@@ -114,6 +115,80 @@ TEST(CraneSnapshot, StructureSegmentsScaleTheDeformation) {
   SnapshotOptions bad;
   bad.displacement_scale = std::numeric_limits<double>::quiet_NaN();
   EXPECT_THROW(snapshotOf(sim, bad), std::invalid_argument);
+}
+
+TEST(RigidFit, RecoversAKnownRigidMotion) {
+  // Points moved by a known rotation and translation: the fit returns exactly that motion.
+  const Eigen::Quaterniond q(Eigen::AngleAxisd(0.3, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()));
+  const Eigen::Vector3d t(0.4, -1.5, 2.0);
+  std::vector<Eigen::Vector3d> x = {{0, 0, 0}, {80, 0, 0}, {0, 2.45, 0}, {40, 1, 3.5}, {10, -1, 2}};
+  std::vector<Eigen::Vector3d> y;
+  for (const auto& p : x) y.push_back(q * p + t);
+  const FramePose f = rigidFit(x, y);
+  EXPECT_LT((f.position - t).norm(), 1e-10);
+  EXPECT_LT(f.orientation.angularDistance(q), 1e-12);
+  EXPECT_THROW(rigidFit({x[0], x[1]}, {y[0], y[1]}), std::invalid_argument);
+  EXPECT_THROW(rigidFit(x, {y[0], y[1], y[2]}), std::invalid_argument);
+}
+
+TEST(CraneSnapshot, RigidPartsSitOnTheDeformedStructure) {
+  // Slewed by 0.7 rad at static equilibrium: the structure sags under its weight and the 3.6 t
+  // load (jib tip more than 1.5 m down). A rigid picture of the jib placed by its frame has its
+  // tip on the deformed tip (the jib's own bending only, well under the rigid offset), the mast
+  // top on the deformed mast top, and each fitted frame moves its part's nodes to within the
+  // part's elastic bending of where the model has them.
+  CraneSimulation sim(t8036({"slewing.angle=0.7", "initial.swing_deg=0"}));
+  sim.initialize();
+  const CraneSnapshot s = snapshotOf(sim);
+  const TowerCraneStructure& st = *sim.support().structure();
+  Eigen::Vector3d tip0 = Eigen::Vector3d::Zero();
+  for (int n : st.jib_tip_nodes) tip0 += st.nodes[n];
+  tip0 /= 2.0;
+  const double rigid_offset = (s.jib_tip.position - tip0).norm();
+  EXPECT_GT(rigid_offset, 1.5);
+  const Eigen::Vector3d rigid_tip = s.jib.orientation * tip0 + s.jib.position;
+  const double bending = std::abs(jibBendingTipDz(st, sim.support().structureDisplacement(
+                                                          sim.fullState().z)));
+  EXPECT_LT((rigid_tip - s.jib_tip.position).norm(), 0.5 * bending + 0.05);
+  EXPECT_LT((rigid_tip - s.jib_tip.position).norm(), 0.25 * rigid_offset);
+  // The mast frame is in the world frame; the deformed mast top node turned by the slewing.
+  const Eigen::Matrix3d R = s.slewing.orientation.toRotationMatrix();
+  const Eigen::VectorXd u = sim.support().structureDisplacement(sim.fullState().z);
+  int top = 0;
+  for (size_t n = 0; n < st.nodes.size(); ++n)
+    if (st.nodes[n].z() > st.nodes[top].z() && st.nodes[n].z() <= 65.0 + 1e-9) top = n;
+  const Eigen::Vector3d top_world = R * (st.nodes[top] + st.nodeDisplacement(u, top));
+  const Eigen::Vector3d top_rigid = s.mast.orientation * (R * st.nodes[top]) + s.mast.position;
+  EXPECT_GT((top_world - R * st.nodes[top]).norm(), 0.2);
+  // A straight line fitted to the mast's bending line under the jib's end moment, w = d xi^2,
+  // misses its end by d / 6: the rigid mast's top is within that (plus 2 %) of the node.
+  EXPECT_LT((top_rigid - top_world).norm(), (1.0 / 6.0 + 0.02) * (top_world - R * st.nodes[top]).norm());
+  // Fits are small motions near identity: tilts of a few tenths of a degree.
+  for (const FramePose* f : {&s.mast, &s.slewing_unit, &s.jib, &s.counter_jib})
+    EXPECT_LT(f->orientation.angularDistance(Eigen::Quaterniond::Identity()), 0.05);
+}
+
+TEST(LoadShapes, SizedFromTheMassesAndHangingBelowTheRopesEnd) {
+  // A rope end swung 0.2 rad about x: the hook block (2044 kg) and a 3600 kg payload lumped at
+  // that point. Volumes: m_h / (0.5 * 7850) and m_p / 1000; the hook block's top face and the
+  // payload's top face on the rope's line below the end point, one under the other.
+  CraneSnapshot s;
+  s.hook.position = Eigen::Vector3d(80.0, 1.0, 10.0);
+  s.hook.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitX()));
+  s.payload = s.hook;
+  const LoadShapes l = loadShapes(s, 2044.0, 3600.0);
+  EXPECT_NEAR(l.hook_block.size.prod(), 2044.0 / (0.5 * 7850.0), 1e-12);
+  EXPECT_NEAR(l.payload.size.prod(), 3.6, 1e-12);
+  const Eigen::Vector3d up = s.hook.orientation * Eigen::Vector3d::UnitZ();
+  const double h = l.hook_block.size.z(), e = l.payload.size.z();
+  EXPECT_LT((l.hook_block.pose.position - (s.hook.position - 0.5 * h * up)).norm(), 1e-12);
+  EXPECT_LT((l.payload.pose.position - (s.hook.position - (h + 0.5 * e) * up)).norm(), 1e-12);
+  // A payload at its own point (rigging) hangs below that point instead.
+  s.payload.position = s.hook.position - 3.0 * up;
+  const LoadShapes r = loadShapes(s, 2044.0, 3600.0);
+  EXPECT_LT((r.payload.pose.position - (s.payload.position - 0.5 * e * up)).norm(), 1e-12);
+  EXPECT_THROW(loadShapes(s, -1.0, 3600.0), std::invalid_argument);
+  EXPECT_THROW(loadShapes(s, 2044.0, std::nan("")), std::invalid_argument);
 }
 
 TEST(CraneSnapshot, ReducedModelSnapshotEqualsItsExpandedState) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # sim.launch with record:=true as fast as possible (docs/ros.md): the bag starts at t = 0 (the
 # node holds its first step until the recorder listens) and holds the rope markers by default;
-# roslaunch ends with the node (required) and leaves /use_sim_time false. Runs its own master on
+# roslaunch ends with the node at the scene's end, exit status 0 and no "REQUIRED process has
+# died" (the node stops the launch as Ctrl-C would), and /use_sim_time is left false. Runs its own master on
 # a free port. Run in the workspace's environment (ctest: devel/env.sh).
 set -uo pipefail
 export PYENV_VERSION=system
@@ -16,7 +17,12 @@ fail() { echo "record_from_start_test: FAILED: $*"; exit 1; }
 for _ in $(seq 100); do rosparam list >/dev/null 2>&1 && break; sleep 0.2; done
 timeout 300 roslaunch crane_twin sim.launch rviz:=false record:=true bag:="$T/run.bag" \
   real_time_factor:=0 duration:=5 shutdown_at_end:=true overrides:="[rope.elements=40]" \
-  >"$T/launch.log" 2>&1 || true
+  >"$T/launch.log" 2>&1
+LAUNCH_STATUS=$?
+[ "$LAUNCH_STATUS" -eq 0 ] || fail "roslaunch exit status $LAUNCH_STATUS: $(tail -20 "$T/launch.log")"
+if grep -q "REQUIRED process" "$T/launch.log"; then fail "a normal end reported as a died process"; fi
+grep -q "the scene ended (shutdown_at_end): stopping the launch" "$T/launch.log" ||
+  fail "the node did not end the launch: $(tail -20 "$T/launch.log")"
 for _ in $(seq 50); do [ -f "$T/run.bag" ] && break; sleep 0.2; done
 [ -f "$T/run.bag" ] || fail "no bag: $(tail -20 "$T/launch.log")"
 /usr/bin/python3 - "$T/run.bag" <<'PY' || fail "bag contents"

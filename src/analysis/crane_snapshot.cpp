@@ -17,7 +17,42 @@ Eigen::Quaterniond zAxisAlong(const Eigen::Vector3d& a) {
   return Eigen::Quaterniond::FromTwoVectors(Eigen::Vector3d::UnitZ(), a);
 }
 
+// Rigid fit of the nodes of the members in one group ("mast", "jib", ...) displaced by
+// scale * u, in the slewing frame.
+FramePose groupFit(const TowerCraneStructure& structure, const Eigen::VectorXd& u, double scale,
+                   const std::string& group) {
+  std::vector<bool> in(structure.nodes.size(), false);
+  for (const StructureMember& m : structure.members) {
+    if (m.group == group) in[m.node1] = in[m.node2] = true;
+  }
+  std::vector<Eigen::Vector3d> x, y;
+  for (size_t n = 0; n < in.size(); ++n) {
+    if (!in[n]) continue;
+    x.push_back(structure.nodes[n]);
+    y.push_back(structure.nodes[n] + scale * structure.nodeDisplacement(u, static_cast<int>(n)));
+  }
+  return rigidFit(x, y);
+}
+
 }  // namespace
+
+FramePose rigidFit(const std::vector<Eigen::Vector3d>& undeformed,
+                   const std::vector<Eigen::Vector3d>& deformed) {
+  if (undeformed.size() < 3 || undeformed.size() != deformed.size()) {
+    throw std::invalid_argument("rigid fit needs the same number (>= 3) of undeformed and deformed points");
+  }
+  const int n = static_cast<int>(undeformed.size());
+  Eigen::Matrix3Xd x(3, n), y(3, n);
+  for (int i = 0; i < n; ++i) {
+    x.col(i) = undeformed[i];
+    y.col(i) = deformed[i];
+  }
+  const Eigen::Matrix4d T = Eigen::umeyama(x, y, false);
+  FramePose p;
+  p.position = T.block<3, 1>(0, 3);
+  p.orientation = Eigen::Quaterniond(Eigen::Matrix3d(T.block<3, 3>(0, 0))).normalized();
+  return p;
+}
 
 CraneSnapshot snapshotOf(const Simulation& sim, const SnapshotOptions& options) {
   if (!(options.displacement_scale >= 0.0) || !std::isfinite(options.displacement_scale)) {
@@ -59,9 +94,17 @@ CraneSnapshot snapshotOf(const Simulation& sim, const SnapshotOptions& options) 
   tip0 /= static_cast<double>(structure->jib_tip_nodes.size());
   s.jib_tip.position = tip0 + s.series.jib_tip;
   s.cab.position = structure->nodes[structure->cab_node] + s.series.cab;
+  const Eigen::VectorXd u = support.structureDisplacement(sim.fullState().z);
+  const double scale = options.displacement_scale;
+  // The rigid parts drawn where the deformed structure is: the mast without the slewing turn,
+  // T_world = Rz T_fit Rz^T, the superstructure's parts in the slewing frame.
+  const FramePose mast = groupFit(*structure, u, scale, "mast");
+  s.mast.position = R * mast.position;
+  s.mast.orientation = Eigen::Quaterniond(R) * mast.orientation * Eigen::Quaterniond(R).conjugate();
+  s.slewing_unit = groupFit(*structure, u, scale, "slewing");
+  s.jib = groupFit(*structure, u, scale, "jib");
+  s.counter_jib = groupFit(*structure, u, scale, "counter_jib");
   if (options.structure_segments) {
-    const Eigen::VectorXd u = support.structureDisplacement(sim.fullState().z);
-    const double scale = options.displacement_scale;
     auto world = [&](int n) {
       return Eigen::Vector3d(R * (structure->nodes[n] + scale * structure->nodeDisplacement(u, n)));
     };

@@ -524,7 +524,10 @@ void CraneSimNode::publish() {
   }
   joint_pub_.publish(toJointState(s, st));
   tf_.sendTransform(toTransforms(s, st + tf_stamp_offset_, frames_));
-  marker_pub_.publish(toMarkers(s, st, 1.5, frames_));
+  const double payload_mass = model_.scene.payload_mass;
+  marker_pub_.publish(
+      toMarkers(s, st, loadShapes(s, model_.scene.hookBlockMass(), payload_mass), payload_mass,
+                frames_));
   last_state_ =
       toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model, frames_);
   last_state_.t += t_offset_;

@@ -68,6 +68,8 @@ class CraneSimNode {
   CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings settings);
   /// Spin, step and publish until ROS shuts down (or the end with shutdown_at_end).
   void run();
+  /// The run reached its end (not a failure, not a shutdown from outside).
+  bool finishedNormally() const { return finished_ && !failed_; }
 
  private:
   struct Replayed {

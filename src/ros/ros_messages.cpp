@@ -1,5 +1,7 @@
 #include "ros_messages.hpp"
 
+#include <cstdio>
+
 namespace crane_twin {
 
 const char* const kJointNames[3] = {"slew", "trolley", "hoist"};
@@ -54,6 +56,17 @@ visualization_msgs::Marker marker(const CraneFrames& f, const std::string& ns, i
   return m;
 }
 
+geometry_msgs::Pose pose(const FramePose& p) {
+  geometry_msgs::Pose m;
+  m.position = point(p.position);
+  const Eigen::Quaterniond q = p.orientation.normalized();
+  m.orientation.x = q.x();
+  m.orientation.y = q.y();
+  m.orientation.z = q.z();
+  m.orientation.w = q.w();
+  return m;
+}
+
 }  // namespace
 
 sensor_msgs::JointState toJointState(const CraneSnapshot& s, const ros::Time& stamp) {
@@ -79,6 +92,10 @@ std::vector<geometry_msgs::TransformStamped> toTransforms(const CraneSnapshot& s
                                                           const ros::Time& stamp,
                                                           const CraneFrames& f) {
   return {transform(f.base(), f("slewing"), s.slewing, stamp),
+          transform(f.base(), f("mast"), s.mast, stamp),
+          transform(f("slewing"), f("slewing_unit"), s.slewing_unit, stamp),
+          transform(f("slewing"), f("jib"), s.jib, stamp),
+          transform(f("slewing"), f("counter_jib"), s.counter_jib, stamp),
           transform(f("slewing"), f("jib_tip"), s.jib_tip, stamp),
           transform(f("slewing"), f("cab"), s.cab, stamp),
           transform(f("slewing"), f("trolley"), s.trolley, stamp),
@@ -87,21 +104,37 @@ std::vector<geometry_msgs::TransformStamped> toTransforms(const CraneSnapshot& s
 }
 
 visualization_msgs::MarkerArray toMarkers(const CraneSnapshot& s, const ros::Time& stamp,
-                                          double payload_diameter, const CraneFrames& f) {
+                                          const LoadShapes& loads, double payload_mass,
+                                          const CraneFrames& f) {
   visualization_msgs::MarkerArray a;
   auto rope = marker(f, "rope", visualization_msgs::Marker::LINE_STRIP, stamp);
   rope.scale.x = 0.12;
-  rope.color.r = rope.color.g = rope.color.b = 0.15f;
+  rope.color.r = rope.color.g = rope.color.b = 0.85f;
   rope.points.reserve(s.rope_curve.size());
   for (const auto& p : s.rope_curve) rope.points.push_back(point(p));
   a.markers.push_back(rope);
 
-  auto payload = marker(f, "payload", visualization_msgs::Marker::SPHERE, stamp);
-  payload.pose.position = point(s.payload.position);
-  payload.scale.x = payload.scale.y = payload.scale.z = payload_diameter;
-  payload.color.r = 1.0f;
-  payload.color.g = 0.45f;
-  a.markers.push_back(payload);
+  auto box = [&](const std::string& ns, const LoadBox& b, float r, float g, float bl) {
+    auto m = marker(f, ns, visualization_msgs::Marker::CUBE, stamp);
+    m.pose = pose(b.pose);
+    m.scale = vector(b.size);
+    m.color.r = r;
+    m.color.g = g;
+    m.color.b = bl;
+    return m;
+  };
+  a.markers.push_back(box("hook_block", loads.hook_block, 0.95f, 0.8f, 0.1f));
+  a.markers.push_back(box("payload", loads.payload, 1.0f, 0.45f, 0.0f));
+  // The payload's mass beside it, readable from the default view (text height 3 m).
+  auto label = marker(f, "payload_label", visualization_msgs::Marker::TEXT_VIEW_FACING, stamp);
+  label.pose.position = point(loads.payload.pose.position +
+                              Eigen::Vector3d(0.0, 0.0, -0.5 * loads.payload.size.z() - 2.5));
+  label.scale.z = 3.0;
+  label.color.r = label.color.g = label.color.b = 0.95f;
+  char text[64];
+  std::snprintf(text, sizeof text, "payload %.1f t", payload_mass / 1000.0);
+  label.text = text;
+  a.markers.push_back(label);
 
   if (!s.structure_segments.empty()) {
     auto structure = marker(f, "structure", visualization_msgs::Marker::LINE_LIST, stamp);

@@ -10,6 +10,7 @@
 
 #include "crane_twin/CraneState.h"
 #include "crane_twin/analysis/crane_snapshot.hpp"
+#include "crane_twin/analysis/load_shapes.hpp"
 
 namespace crane_twin {
 
@@ -36,14 +37,17 @@ struct CraneFrames {
 geometry_msgs::TransformStamped toBaseTransform(const CraneFrames& f,
                                                 const Eigen::Vector3d& position, double yaw,
                                                 const ros::Time& stamp);
-/// base -> slewing -> {jib_tip, cab, trolley}; base -> {hook, payload} (prefixed).
+/// base -> {slewing, mast, hook, payload}; slewing -> {slewing_unit, jib, counter_jib,
+/// jib_tip, cab, trolley} (prefixed). mast, slewing_unit, jib, counter_jib and trolley carry the
+/// URDF's rigid parts (their floating joints).
 std::vector<geometry_msgs::TransformStamped> toTransforms(const CraneSnapshot& s,
                                                           const ros::Time& stamp,
                                                           const CraneFrames& f = {});
-/// Rope LINE_STRIP, payload SPHERE, deformed structure LINE_LIST (frame <prefix>base,
-/// namespaces <prefix>rope, ...).
+/// Rope LINE_STRIP, hook block and payload CUBEs (`loads`), the payload's mass as text,
+/// deformed structure LINE_LIST (frame <prefix>base, namespaces <prefix>rope, ...).
 visualization_msgs::MarkerArray toMarkers(const CraneSnapshot& s, const ros::Time& stamp,
-                                          double payload_diameter, const CraneFrames& f = {});
+                                          const LoadShapes& loads, double payload_mass,
+                                          const CraneFrames& f = {});
 /// The docs/cli.md row with the step cost [s] and real-time factor (frame <prefix>base).
 CraneState toStateMessage(const CraneSnapshot& s, const ros::Time& stamp, double step_cost,
                           double real_time_factor, const std::string& model,

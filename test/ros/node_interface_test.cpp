@@ -2,6 +2,7 @@
 // against the live T8036 scene at real time: joint names and the rope tension they carry, the
 // TF tree, the markers, bad messages (the node lives on, the state stays finite), a trolley
 // command followed as the drive's limits say, the command timeout, pause and reset.
+#include <Eigen/Geometry>
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -96,8 +97,10 @@ TEST(CraneSimNode, PublishesJointsWithTheRopeTension) {
 TEST(CraneSimNode, TfTreeIsComplete) {
   tf2_ros::Buffer buffer;
   tf2_ros::TransformListener listener(buffer);
-  for (const char* frame : {"base", "slewing", "jib_tip", "cab", "trolley", "hook", "payload",
-                            "tower", "slewing_unit", "jib", "trolley_carriage", "hook_block"}) {
+  // The node's frames; mast, slewing_unit, jib, counter_jib and trolley are also the URDF's
+  // links (floating joints), which have no other publisher.
+  for (const char* frame : {"base", "slewing", "mast", "slewing_unit", "jib", "counter_jib",
+                            "jib_tip", "cab", "trolley", "hook", "payload"}) {
     std::string error;
     EXPECT_TRUE(buffer.canTransform("world", frame, ros::Time(0), ros::Duration(10.0), &error))
         << frame << ": " << error;
@@ -108,6 +111,25 @@ TEST(CraneSimNode, TfTreeIsComplete) {
   const double drop = trolley.transform.translation.z - payload.transform.translation.z;
   EXPECT_GT(drop, 59.0);
   EXPECT_LT(drop, 61.0);
+  // The rigid jib sits on the deformed one: its undeformed tip point (81.225, 0, 68) in the jib
+  // frame lands within 0.5 m of the deformed jib tip (the model's jib sags 2.3 m at the tip
+  // under this load; the old fixed URDF jib was that far above it).
+  const auto jib = buffer.lookupTransform("slewing", "jib", ros::Time(0));
+  const auto tip = buffer.lookupTransform("slewing", "jib_tip", ros::Time(0));
+  const auto& q = jib.transform.rotation;
+  const Eigen::Vector3d rigid_tip =
+      Eigen::Quaterniond(q.w, q.x, q.y, q.z) * Eigen::Vector3d(81.225, 0.0, 68.0) +
+      Eigen::Vector3d(jib.transform.translation.x, jib.transform.translation.y,
+                      jib.transform.translation.z);
+  const Eigen::Vector3d deformed_tip(tip.transform.translation.x, tip.transform.translation.y,
+                                     tip.transform.translation.z);
+  EXPECT_LT(deformed_tip.z(), 68.0 - 1.5);
+  EXPECT_LT((rigid_tip - deformed_tip).norm(), 0.5);
+  // The URDF has no hook: the only hook block is the marker at the simulated rope end.
+  std::string urdf;
+  ASSERT_TRUE(ros::param::get("robot_description", urdf));
+  EXPECT_EQ(urdf.find("<link name=\"hook"), std::string::npos);
+  EXPECT_EQ(urdf.find("<joint name=\"hoist\""), std::string::npos);
   // Without a site pose the crane's base is the world's origin.
   const auto base = buffer.lookupTransform("world", "base", ros::Time(0));
   EXPECT_EQ(base.transform.translation.x, 0.0);
@@ -125,7 +147,8 @@ TEST(CraneSimNode, MarkersShowRopePayloadAndStructure) {
     return false;
   }, 10.0));
   std::lock_guard<std::mutex> l(rec->m);
-  bool rope = false, payload = false, structure = false;
+  bool rope = false, payload = false, hook_block = false, structure = false;
+  geometry_msgs::Point hook_centre, payload_centre;
   for (const auto& m : rec->markers.markers) {
     EXPECT_EQ(m.header.frame_id, "base");  // the crane's own frame (no prefix, at the origin)
     if (m.ns == "rope") {
@@ -134,7 +157,15 @@ TEST(CraneSimNode, MarkersShowRopePayloadAndStructure) {
       EXPECT_EQ(m.points.size(), 40u * 4u + 1u);  // 40 elements (test override), 4 samples each
     } else if (m.ns == "payload") {
       payload = true;
-      EXPECT_EQ(m.type, visualization_msgs::Marker::SPHERE);
+      EXPECT_EQ(m.type, visualization_msgs::Marker::CUBE);
+      // A cube of the payload's volume at 1000 kg/m^3: 3.6 m^3 (docs/ros.md "Frames").
+      EXPECT_NEAR(m.scale.x * m.scale.y * m.scale.z, 3.6, 1e-9);
+      payload_centre = m.pose.position;
+    } else if (m.ns == "hook_block") {
+      hook_block = true;
+      EXPECT_EQ(m.type, visualization_msgs::Marker::CUBE);
+      EXPECT_NEAR(m.scale.x * m.scale.y * m.scale.z, 2044.0 / (0.5 * 7850.0), 1e-9);
+      hook_centre = m.pose.position;
     } else if (m.ns == "structure") {
       structure = true;
       EXPECT_EQ(m.type, visualization_msgs::Marker::LINE_LIST);
@@ -142,7 +173,13 @@ TEST(CraneSimNode, MarkersShowRopePayloadAndStructure) {
       EXPECT_EQ(m.points.size() % 2, 0u);
     }
   }
-  EXPECT_TRUE(rope && payload && structure);
+  EXPECT_TRUE(rope && payload && hook_block && structure);
+  // One hook: the hook block hangs just below the rope's end, the payload just below it.
+  const auto end = rec->markers.markers.front().points.back();  // the rope's last point
+  EXPECT_LT(std::hypot(hook_centre.x - end.x, hook_centre.y - end.y, hook_centre.z - end.z), 1.0);
+  EXPECT_LT(payload_centre.z, hook_centre.z);
+  EXPECT_LT(std::hypot(payload_centre.x - hook_centre.x, payload_centre.y - hook_centre.y,
+                       payload_centre.z - hook_centre.z), 2.0);
 }
 
 TEST(CraneSimNode, BadCommandsAreRejectedAndTheNodeLivesOn) {

@@ -37,7 +37,7 @@ TEST(Site, FramesOfBothCranesStandOnTheSite) {
   tf2_ros::TransformListener listener(buffer);
   for (const char* frame : {"crane_a/base", "crane_a/payload", "crane_a/jib", "crane_b/base",
                             "crane_b/slewing", "crane_b/trolley", "crane_b/payload",
-                            "crane_b/hook_block"}) {
+                            "crane_b/counter_jib"}) {
     std::string error;
     EXPECT_TRUE(buffer.canTransform("world", frame, ros::Time(0), ros::Duration(20.0), &error))
         << frame << ": " << error;

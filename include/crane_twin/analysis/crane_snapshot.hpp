@@ -8,6 +8,12 @@
 //   slewing = Rz(theta)        the superstructure's frame, same origin (docs/model.md);
 //   jib_tip, cab, trolley      in the slewing frame: undeformed point + displacement u (no
 //                              rotation: the structure is linear, its node rotations small);
+//   mast                       in the world frame: the mast's rigid motion (best fit of its
+//                              deformed nodes, not turned by the slewing angle);
+//   slewing_unit, jib,         in the slewing frame: each part's rigid motion, the least-squares
+//   counter_jib                fit (Umeyama, no scaling) of its deformed nodes onto the
+//                              undeformed ones, so a rigid picture of the part drawn in
+//                              undeformed slewing coordinates sits on the deformed structure;
 //   hook, payload              in the world frame at the rope's end node, z axis up along the
 //                              rope's last sampled segment (its end tangent). The model lumps hook block
 //                              and payload into one end mass, so both frames share that point.
@@ -40,10 +46,18 @@ struct CraneSnapshot {
   bool has_crane = false;
   FramePose slewing;                    ///< in world
   FramePose jib_tip, cab, trolley;      ///< in slewing
+  FramePose mast;                       ///< in world (rigid fit, without the slewing turn)
+  FramePose slewing_unit, jib, counter_jib;  ///< in slewing (rigid fits of the deformed parts)
   FramePose hook, payload;              ///< in world
   std::vector<Eigen::Vector3d> rope_curve;           ///< world, top to end
   std::vector<Eigen::Vector3d> structure_segments;   ///< world, pairs (member ends)
 };
+
+/// Rigid motion T (x -> R x + t) that best maps the undeformed points onto the deformed ones in
+/// the least-squares sense, min sum |R x_i + t - y_i|^2 (Umeyama 1991, without scaling).
+/// Throws std::invalid_argument for fewer than 3 points or sizes that differ.
+FramePose rigidFit(const std::vector<Eigen::Vector3d>& undeformed,
+                   const std::vector<Eigen::Vector3d>& deformed);
 
 /// Snapshot of a running simulation. Throws std::invalid_argument for bad options.
 CraneSnapshot snapshotOf(const Simulation& sim, const SnapshotOptions& options = {});
