@@ -34,6 +34,17 @@ void CraneDrives::reset() {
   hoist_.emplace(c.hoist, scene_.rope.length, c.min_rope_length, c.max_rope_length);
 }
 
+void CraneDrives::assignStateFrom(const CraneDrives& o) {
+  slew_ = o.slew_;
+  trolley_ = o.trolley_;
+  hoist_ = o.hoist_;
+  slew_flags_ = o.slew_flags_;
+  trolley_flags_ = o.trolley_flags_;
+  hoist_flags_ = o.hoist_flags_;
+  active_ = o.active_;
+  manual_ = o.manual_;
+}
+
 void CraneDrives::setCommand(const CommandEntry& c) {
   if (!std::isfinite(c.slew_rate) || !std::isfinite(c.trolley_speed) ||
       !std::isfinite(c.hoist_speed)) {

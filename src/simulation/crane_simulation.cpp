@@ -68,6 +68,34 @@ bool CraneSimulation::followHoistLength() {
   return true;
 }
 
+void CraneSimulation::continueFrom(const Simulation& other) {
+  const auto* o = dynamic_cast<const CraneSimulation*>(&other);
+  if (!o) throw InputError("continueFrom: the other run is not a full-order rope run");
+  continueDrivesFrom(*o);
+  if (o->rope_->length() != rope_->length()) {
+    rope_->setLength(o->rope_->length());
+    solver_->refreshMass();
+  }
+  // The generalized-alpha variables belong to a time step: with another step, restart.
+  if (o->solver_->timeStep() == solver_->timeStep()) {
+    state_ = o->state_;
+  } else {
+    restartFrom(o->state_);
+  }
+}
+
+void CraneSimulation::setRopeMotion(const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
+  if (q.size() != state_.q.size() || v.size() != state_.v.size()) {
+    throw std::invalid_argument("setRopeMotion: " + std::to_string(q.size()) + " / " +
+                                std::to_string(v.size()) + " rope coordinates, the rope has " +
+                                std::to_string(state_.q.size()));
+  }
+  CoupledState s = state_;
+  s.q = q;
+  s.v = v;
+  restartFrom(s);
+}
+
 CoupledState CraneSimulation::initialState() {
   resetDrives();
   return sceneInitialState();

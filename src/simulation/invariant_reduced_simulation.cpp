@@ -57,6 +57,45 @@ void InvariantReducedSimulation::initialize() {
   }
 }
 
+void InvariantReducedSimulation::continueFrom(const Simulation& other) {
+  const auto* o = dynamic_cast<const InvariantReducedSimulation*>(&other);
+  if (!o) throw InputError("continueFrom: the other run is not a reduced (invariant) rope run");
+  if (o->state_.q.size() != state_.q.size() && !o->full_order_) {
+    throw InputError("continueFrom: the other run's basis has another size");
+  }
+  full_.continueFrom(o->full_);
+  weight_ = o->weight_;
+  end_strain_ = o->end_strain_;
+  full_order_ = o->full_order_;
+  steps_ = o->steps_;
+  full_since_ = o->full_since_;
+  hand_back_interval_ = o->hand_back_interval_;
+  hand_back_countdown_ = o->hand_back_countdown_;
+  if (full_order_) return;
+  if (o->solver_->length() != solver_->length()) solver_->setLength(o->solver_->length());
+  state_ = o->state_;
+  if (o->full_.model().scene.time_step != full_.model().scene.time_step) {
+    solver_->initializeAccelerations(state_);
+  }
+}
+
+void InvariantReducedSimulation::setRopeMotion(const Eigen::VectorXd& q,
+                                               const Eigen::VectorXd& v) {
+  if (full_order_) return full_.setRopeMotion(q, v);
+  syncFullRope();
+  CoupledState f = solver_->expand(state_);
+  if (q.size() != f.q.size() || v.size() != f.v.size()) {
+    throw std::invalid_argument("setRopeMotion: " + std::to_string(q.size()) + " / " +
+                                std::to_string(v.size()) + " rope coordinates, the rope has " +
+                                std::to_string(f.q.size()));
+  }
+  f.q = q;
+  f.v = v;
+  CoupledState r = solver_->project(f);
+  solver_->initializeAccelerations(r);
+  state_ = r;
+}
+
 void InvariantReducedSimulation::handOver(const CoupledState& full) {
   full_.restartFrom(full);
   full_since_ = full.t;

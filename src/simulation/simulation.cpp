@@ -40,6 +40,16 @@ void writeSeriesRow(std::ostream& out, const SeriesValues& v) {
       << ',' << v.tension_ratio << ',' << v.load_chart_ratio << ',' << v.warnings << ',' << v.full_order_steps << '\n';
 }
 
+void Simulation::continueFrom(const Simulation&) {
+  throw InputError("continuing from another run's state (forecasts) needs rope.model full or "
+                   "reduced (rope.reduction: invariant)");
+}
+
+void Simulation::setRopeMotion(const Eigen::VectorXd&, const Eigen::VectorXd&) {
+  throw InputError("setting the rope's motion (the twin's sway correction) needs rope.model "
+                   "full or reduced (rope.reduction: invariant)");
+}
+
 void Simulation::writeNodeRows(std::ostream& out) const {
   const double t = time();
   for (int j = 0; j < ropeNodes(); ++j) {

@@ -58,6 +58,12 @@ void SupportedRopeSimulation::resetDrivesAndPose() {
   support_->setSlewMotion(0.0, 0.0);
 }
 
+void SupportedRopeSimulation::continueDrivesFrom(const SupportedRopeSimulation& o) {
+  drives_.assignStateFrom(o.drives_);
+  support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
+  support_->setSlewMotion(drives_.slewRate(), drives_.slewAcceleration());
+}
+
 bool SupportedRopeSimulation::advanceDrives(double t, double dt) {
   if (!drives_.advance(t, dt)) return false;
   support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());

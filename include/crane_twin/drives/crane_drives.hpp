@@ -22,6 +22,9 @@ class CraneDrives {
 
   /// Back to the scene's initial pose, at rest, the manual command cleared.
   void reset();
+  /// Take over the drives' state (positions, speeds, flags, command) of another CraneDrives of
+  /// the same scene (a forecast copy).
+  void assignStateFrom(const CraneDrives& other);
   /// Operator command from now on, overriding the schedule (t is ignored). Throws
   /// std::invalid_argument for a non-finite rate and InputError for drives without a crane;
   /// nothing changes then.

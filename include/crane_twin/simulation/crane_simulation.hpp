@@ -60,6 +60,8 @@ class CraneSimulation final : public SupportedRopeSimulation {
     solver_->initializeAccelerations(state_);
   }
 
+  void continueFrom(const Simulation& other) override;
+  void setRopeMotion(const Eigen::VectorXd& q, const Eigen::VectorXd& v) override;
   /// The initial full-order state of the scene (what initialize() starts from).
   CoupledState initialState();
   /// Rope modes (with the end mass) linearised at the static equilibrium without holding force:

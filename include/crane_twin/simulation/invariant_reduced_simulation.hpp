@@ -61,6 +61,10 @@ class InvariantReducedSimulation final : public Simulation {
   const CraneDrives& drives() const override { return full_.drives(); }
   const RopeSupport& support() const override { return full_.support(); }
   std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override;
+  void continueFrom(const Simulation& other) override;
+  /// Reduced: the motion projected onto the basis (exact for a rigid rotation of a state the
+  /// basis carries); at full order: the full model's.
+  void setRopeMotion(const Eigen::VectorXd& q, const Eigen::VectorXd& v) override;
   /// The rope length being integrated [m] (the full rope's only while at full order).
   double ropeLength() const;
   int subdomains() const override { return 1; }  ///< one basis for the whole run

@@ -86,6 +86,17 @@ class Simulation {
   virtual long fullOrderSteps() const { return 0; }
   virtual bool integratingFullOrder() const { return false; }
 
+  /// Continue from the state of another simulation of the same scene and rope model (its rope,
+  /// support, drives and time), e.g. a forecast copy built with another time step: with the
+  /// same step the two then run identically. Throws InputError for another model type or a
+  /// model that does not support it (docs/twin.md).
+  virtual void continueFrom(const Simulation& other);
+  /// Replace the rope's positions and velocities by q, v (the rope model's full coordinates, as
+  /// fullState() gives them; the top node must stay on the support), keeping the support and the
+  /// drives; accelerations are made consistent again. The twin's sway correction
+  /// (docs/twin.md). Throws InputError where the model does not support it,
+  /// std::invalid_argument for wrong sizes.
+  virtual void setRopeMotion(const Eigen::VectorXd& q, const Eigen::VectorXd& v);
   /// `t,node,x,y,z` rows for every rope node.
   void writeNodeRows(std::ostream& out) const;
 };

@@ -51,6 +51,8 @@ class SupportedRopeSimulation : public Simulation {
  protected:
   /// Copies the model and builds its support (makeRopeSupport). Throws InputError.
   explicit SupportedRopeSimulation(const CraneModel& model);
+  /// The drives' state of another run of the same scene, the support at their pose.
+  void continueDrivesFrom(const SupportedRopeSimulation& other);
   /// Drives at their start, the support at the scene's pose at rest.
   void resetDrivesAndPose();
   /// The initial state of the scene at t = 0 (docs/scenes.md, `initial`), accelerations

@@ -1,0 +1,69 @@
+// The twin follows a real crane's joints (docs/twin.md "Following the crane"): measured slew
+// angle [rad], trolley radius [m] and hoisted rope length [m], positions and optionally
+// velocities, at 10-100 Hz with jitter and gaps, turned into rate commands for the model's
+// drives, which ramp them at their acceleration limits (so the model's motion never has a step
+// in acceleration beyond the drives' limits).
+//
+// Per axis, with the newest sample (t_k, x_k, v_k) at time t:
+//   target x* = x_k + v_k min(t - t_k, max_extrapolation),      (bridges gaps and latency)
+//   rate     = v_k + gain (x* - x_model),  limited to the drive's max speed,
+// v_k the measured velocity, or, when the message has none, the slope of a least-squares line
+// through the samples of the last velocity_window seconds (a finite difference of two samples
+// 50 ms apart with 10 ms of jitter would be 40 % off). Beyond stale_after without a sample the input is flagged stale (for
+// diagnostics) and still extrapolated; beyond max_extrapolation v_k = 0: the axis holds the
+// last measured position (a sensor that died while the crane stopped must not drive it on).
+#pragma once
+
+#include <Eigen/Dense>
+#include <deque>
+#include <optional>
+#include <string>
+
+#include "crane_twin/drives/crane_drives.hpp"
+#include "crane_twin/io/crane_description.hpp"
+#include "crane_twin/io/scene.hpp"
+
+namespace crane_twin {
+
+struct JointSample {
+  double t = 0.0;                              ///< [s] of the twin's simulated time
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< slew [rad], trolley [m], hoist [m]
+  std::optional<Eigen::Vector3d> velocity;     ///< [rad/s, m/s, m/s]
+};
+
+struct JointFollowerSettings {
+  double gain = 2.0;               ///< position loop gain [1/s]
+  double max_extrapolation = 1.0;  ///< [s]
+  double stale_after = 0.5;        ///< [s]
+  double velocity_window = 0.5;    ///< [s]
+  /// Throws std::invalid_argument naming the field.
+  void check() const;
+};
+
+class MeasuredJointFollower {
+ public:
+  explicit MeasuredJointFollower(const JointFollowerSettings& settings = {});
+  /// A new measurement. "" when taken, else why it was refused (non-finite values, a time
+  /// before the newest sample's, a radius or rope length outside the crane's limits).
+  std::string add(const JointSample& sample, const CraneDescription& crane);
+  /// Rate command for the drives at time t (zero rates before the first sample).
+  CommandEntry command(double t, const CraneDrives& drives, const CraneDescription& crane) const;
+  /// The measured joint rates the command extrapolates with (zero without a sample, or
+  /// beyond max_extrapolation).
+  Eigen::Vector3d rates(double t) const;
+  bool hasSample() const { return last_.has_value(); }
+  /// No sample within stale_after of t (or none at all).
+  bool stale(double t) const;
+  /// Time since the newest sample [s] (infinite without one).
+  double age(double t) const;
+  long refused() const { return refused_; }
+  void clear();
+
+ private:
+  JointFollowerSettings settings_;
+  std::optional<JointSample> last_;
+  std::deque<JointSample> window_;  ///< samples within velocity_window of the newest
+  long refused_ = 0;
+};
+
+}  // namespace crane_twin

@@ -1,0 +1,114 @@
+#include "crane_twin/drives/measured_joint_follower.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace crane_twin {
+
+namespace {
+
+double wrapAngle(double a) { return std::atan2(std::sin(a), std::cos(a)); }
+
+}  // namespace
+
+void JointFollowerSettings::check() const {
+  auto positive = [](double x, const char* name) {
+    if (!std::isfinite(x) || !(x > 0.0)) {
+      throw std::invalid_argument(std::string(name) + " must be finite and > 0, got " +
+                                  std::to_string(x));
+    }
+  };
+  positive(gain, "gain");
+  positive(max_extrapolation, "max_extrapolation");
+  positive(stale_after, "stale_after");
+  positive(velocity_window, "velocity_window");
+}
+
+MeasuredJointFollower::MeasuredJointFollower(const JointFollowerSettings& settings)
+    : settings_(settings) {
+  settings_.check();
+}
+
+void MeasuredJointFollower::clear() {
+  last_.reset();
+  window_.clear();
+}
+
+std::string MeasuredJointFollower::add(const JointSample& s, const CraneDescription& crane) {
+  auto refuse = [&](const std::string& why) {
+    ++refused_;
+    return why;
+  };
+  if (!std::isfinite(s.t) || !s.position.allFinite() || (s.velocity && !s.velocity->allFinite())) {
+    return refuse("non-finite joint value");
+  }
+  if (last_ && s.t < last_->t) return refuse("sample older than the newest one");
+  if (s.position.y() < crane.min_radius - 1e-6 || s.position.y() > crane.max_radius + 1e-6) {
+    return refuse("trolley radius " + std::to_string(s.position.y()) + " m outside [" +
+                  std::to_string(crane.min_radius) + ", " + std::to_string(crane.max_radius) + "]");
+  }
+  if (s.position.z() < crane.min_rope_length - 1e-6 || s.position.z() > crane.max_rope_length + 1e-6) {
+    return refuse("rope length " + std::to_string(s.position.z()) + " m outside [" +
+                  std::to_string(crane.min_rope_length) + ", " +
+                  std::to_string(crane.max_rope_length) + "]");
+  }
+  if (last_ && s.t == last_->t && !window_.empty()) window_.pop_back();  // the newer wins
+  last_ = s;
+  window_.push_back(s);
+  while (window_.size() > 2 && window_.front().t < s.t - settings_.velocity_window) {
+    window_.pop_front();
+  }
+  return "";
+}
+
+double MeasuredJointFollower::age(double t) const {
+  return last_ ? t - last_->t : std::numeric_limits<double>::infinity();
+}
+
+bool MeasuredJointFollower::stale(double t) const { return !(age(t) <= settings_.stale_after); }
+
+Eigen::Vector3d MeasuredJointFollower::rates(double t) const {
+  if (!last_ || !(age(t) <= settings_.max_extrapolation)) return Eigen::Vector3d::Zero();
+  if (last_->velocity) return *last_->velocity;
+  // Least-squares slope v = sum (t_i - tm)(x_i - x_last) / sum (t_i - tm)^2, the slew angles
+  // unwrapped against the newest.
+  if (window_.size() < 2) return Eigen::Vector3d::Zero();
+  double tm = 0.0;
+  for (const JointSample& w : window_) tm += w.t;
+  tm /= static_cast<double>(window_.size());
+  double stt = 0.0;
+  Eigen::Vector3d stx = Eigen::Vector3d::Zero();
+  for (const JointSample& w : window_) {
+    Eigen::Vector3d d = w.position - last_->position;
+    d.x() = wrapAngle(d.x());
+    stt += (w.t - tm) * (w.t - tm);
+    stx += (w.t - tm) * d;
+  }
+  return stt > 1e-9 ? Eigen::Vector3d(stx / stt) : Eigen::Vector3d::Zero();
+}
+
+CommandEntry MeasuredJointFollower::command(double t, const CraneDrives& drives,
+                                            const CraneDescription& crane) const {
+  CommandEntry c;
+  c.t = t;
+  if (!last_) return c;
+  const Eigen::Vector3d v = rates(t);
+  const double ahead = std::clamp(t - last_->t, 0.0, settings_.max_extrapolation);
+  const Eigen::Vector3d target = last_->position + v * ahead;
+  const Eigen::Vector3d model(drives.slewAngle(), drives.trolleyRadius(), drives.hoistLength());
+  Eigen::Vector3d e = target - model;
+  e.x() = wrapAngle(e.x());
+  const double vmax[3] = {crane.slewing.max_speed, crane.trolley.max_speed, crane.hoist.max_speed};
+  double rate[3];
+  for (int a = 0; a < 3; ++a) {
+    rate[a] = std::clamp(v[a] + settings_.gain * e[a], -vmax[a], vmax[a]);
+  }
+  c.slew_rate = rate[0];
+  c.trolley_speed = rate[1];
+  c.hoist_speed = rate[2];
+  return c;
+}
+
+}  // namespace crane_twin

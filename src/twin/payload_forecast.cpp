@@ -1,0 +1,66 @@
+#include "crane_twin/twin/payload_forecast.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "crane_twin/integrators/numerical_failure.hpp"
+#include "crane_twin/io/input_error.hpp"
+
+namespace crane_twin {
+
+PayloadForecaster::PayloadForecaster(const CraneModel& model, double time_step) {
+  if (!std::isfinite(time_step) || time_step < 0.0) {
+    throw InputError("forecast time step must be >= 0 (0: the scene's), got " +
+                     std::to_string(time_step));
+  }
+  CraneModel m = model;
+  if (time_step > 0.0) {
+    m.scene.time_step = time_step;
+    m.scene.output_interval = std::max(m.scene.output_interval, time_step);
+  }
+  time_step_ = m.scene.time_step;
+  sim_ = makeSimulation(m);
+  sim_->initialize();
+  sim_->continueFrom(*sim_);  // refuses models that cannot continue (InputError), at once
+}
+
+PayloadForecast PayloadForecaster::run(const Simulation& twin, const CommandEntry& command,
+                                       double horizon, double sample_period) {
+  if (!(horizon > 0.0) || !std::isfinite(horizon)) {
+    throw std::invalid_argument("forecast horizon must be > 0");
+  }
+  if (!(sample_period > 0.0) || !std::isfinite(sample_period)) {
+    throw std::invalid_argument("forecast sample period must be > 0");
+  }
+  sim_->continueFrom(twin);
+  sim_->setCommand(command);
+  PayloadForecast f;
+  f.t0 = sim_->time();
+  const double end = f.t0 + horizon, eps = 0.5 * time_step_;
+  double next = f.t0;
+  auto record = [&]() {
+    const SeriesValues v = sim_->series();
+    f.t.push_back(v.t);
+    f.payload.push_back(v.payload);
+    const double swing = (v.payload - v.trolley).head<2>().norm();
+    if (swing > f.max_swing) {
+      f.max_swing = swing;
+      f.max_swing_time = v.t;
+    }
+  };
+  try {
+    while (true) {
+      if (sim_->time() >= next - eps) {
+        record();
+        next += sample_period;
+      }
+      if (sim_->time() >= end - eps) break;
+      sim_->step();
+    }
+  } catch (const NumericalFailure&) {
+    f.failed = true;
+  }
+  return f;
+}
+
+}  // namespace crane_twin

@@ -1,0 +1,249 @@
+// The twin's core (docs/twin.md), without ROS: a run continued from another's state, the
+// forecast, the sway correction, the Kalman filter against closed forms, and the measured
+// joint follower.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+
+#include "crane_twin/drives/measured_joint_follower.hpp"
+#include "crane_twin/integrators/coupled_state.hpp"
+#include "crane_twin/io/input_error.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/simulation/invariant_reduced_simulation.hpp"
+#include "crane_twin/twin/payload_forecast.hpp"
+#include "crane_twin/twin/sway_correction.hpp"
+#include "crane_twin/twin/sway_estimator.hpp"
+
+using namespace crane_twin;
+
+namespace {
+const std::string kScenes = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/";
+
+CraneModel live(std::vector<std::string> sets) {
+  sets.insert(sets.begin(), {"rope.elements=40", "structure.modes=20"});
+  return buildCraneModel(loadScene(kScenes + "t8036_live.yaml", sets));
+}
+
+CommandEntry moving() {
+  CommandEntry c;
+  c.slew_rate = 0.04;
+  c.trolley_speed = -0.5;
+  c.hoist_speed = -0.3;
+  return c;
+}
+}  // namespace
+
+TEST(ContinueFrom, ACopyWithTheSameStepRunsIdentically) {
+  // Reduced and full order: run A 2 s under motion, B (another instance) continues from A;
+  // both run 3 s more under the same command: payloads equal to round-off.
+  for (const char* model : {"rope.model=reduced", "rope.model=full"}) {
+    const CraneModel m = live({model, "initial.swing_deg=3"});
+    std::unique_ptr<Simulation> a = makeSimulation(m), b = makeSimulation(m);
+    a->initialize();
+    b->initialize();
+    a->setCommand(moving());
+    for (int k = 0; k < 400; ++k) a->step();
+    b->continueFrom(*a);
+    EXPECT_EQ(b->time(), a->time());
+    for (int k = 0; k < 600; ++k) {
+      a->step();
+      b->step();
+    }
+    EXPECT_LT((a->series().payload - b->series().payload).norm(), 1e-9) << model;
+    EXPECT_NEAR(a->drives().trolleyRadius(), b->drives().trolleyRadius(), 1e-12) << model;
+    EXPECT_NEAR(a->drives().hoistLength(), b->drives().hoistLength(), 1e-12) << model;
+  }
+  // A pendulum run cannot continue another's state: said so.
+  const CraneModel p = live({"rope.model=pendulum"});
+  std::unique_ptr<Simulation> s = makeSimulation(p);
+  s->initialize();
+  EXPECT_THROW(s->continueFrom(*s), InputError);
+}
+
+TEST(PayloadForecast, AtTheTwinsStepItIsTheTwinsFutureAndAtFourTimesTheStepClose) {
+  const CraneModel m = live({"initial.swing_deg=4"});
+  std::unique_ptr<Simulation> twin = makeSimulation(m);
+  twin->initialize();
+  for (int k = 0; k < 200; ++k) twin->step();
+  const CommandEntry c = moving();
+  PayloadForecaster same(m, 0.0), coarse(m, 0.02);
+  const PayloadForecast f = same.run(*twin, c, 20.0, 0.5);
+  const PayloadForecast g = coarse.run(*twin, c, 20.0, 0.5);
+  ASSERT_EQ(f.t.size(), 41u);
+  ASSERT_EQ(g.t.size(), 41u);
+  // The twin itself continued under the command: the forecast at its own step is its future.
+  twin->setCommand(c);
+  double worst_coarse = 0.0;
+  for (size_t i = 0; i < f.t.size(); ++i) {
+    while (twin->time() < f.t[i] - 1e-9) twin->step();
+    EXPECT_NEAR(g.t[i], f.t[i], 1e-9);
+    EXPECT_LT((f.payload[i] - twin->series().payload).norm(), 1e-9) << "t " << f.t[i];
+    worst_coarse = std::max(worst_coarse, (g.payload[i] - f.payload[i]).norm());
+  }
+  // 20 ms steps against 5 ms over 20 s of slewing, trolley travel and hoisting.
+  EXPECT_LT(worst_coarse, 0.01);
+  EXPECT_GT(f.max_swing, 0.5);
+  EXPECT_FALSE(f.failed);
+  EXPECT_THROW(same.run(*twin, c, 0.0, 0.5), std::invalid_argument);
+}
+
+TEST(SwayCorrection, MovesTheEndByDpAndGivesItDvRigidly) {
+  const CraneModel m = live({"initial.swing_deg=2"});
+  InvariantReducedSimulation sim(m);
+  sim.initialize();
+  for (int k = 0; k < 100; ++k) sim.step();
+  const CoupledState before = sim.fullState();
+  const int last = 6 * (sim.ropeNodes() - 1);
+  const Eigen::Vector3d dp(0.3, -0.2, 0.0), dv(-0.05, 0.08, 0.0);
+  CoupledState f = before;
+  rotateRopeAboutTop(f.q, f.v, dp, dv);
+  // The end moves by dp's part across the rope, to second order (the rope turns: |dp|^2 / L
+  // lifts it), and its velocity gains dv's part across the rope.
+  const Eigen::Vector3d rho = before.q.segment<3>(last) - before.q.head<3>();
+  const double L = rho.norm();
+  const Eigen::Vector3d n = rho / L, n_after = (f.q.segment<3>(last) - f.q.head<3>()) / L;
+  const Eigen::Vector3d dp_across = dp - dp.dot(n) * n, dv_across = dv - dv.dot(n_after) * n_after;
+  EXPECT_LT((f.q.segment<3>(last) - before.q.segment<3>(last) - dp_across).norm(),
+            dp.squaredNorm() / L + 1e-9);
+  const Eigen::Vector3d dv_got = f.v.segment<3>(last) - before.v.segment<3>(last);
+  EXPECT_LT((dv_got - dv_got.dot(n_after) * n_after - dv_across).norm(), 1e-3 * dv.norm());
+  // Rigid: every node keeps its distance to the top, the top stays.
+  for (int j = 0; j < sim.ropeNodes(); ++j) {
+    EXPECT_NEAR((f.q.segment<3>(6 * j) - f.q.head<3>()).norm(),
+                (before.q.segment<3>(6 * j) - before.q.head<3>()).norm(), 1e-9);
+  }
+  EXPECT_LT((f.q.head<3>() - before.q.head<3>()).norm(), 1e-15);
+  // Into the reduced run: the basis carries the rotation, so the payload lands where the
+  // rotated rope puts it.
+  const Eigen::Vector3d p0 = sim.series().payload;
+  applySwayCorrection(sim, dp, dv);
+  EXPECT_LT((sim.series().payload - f.q.segment<3>(last)).norm(), 1e-6);
+  EXPECT_GT((sim.series().payload - p0).norm(), 0.3);
+  for (int k = 0; k < 50; ++k) sim.step();  // and it runs on
+  EXPECT_TRUE(sim.series().payload.allFinite());
+}
+
+TEST(SwayEstimator, OneUpdateIsTheScalarKalmanGain) {
+  // P0 = diag(s^2), one measurement: K = s^2 / (s^2 + r) on the position, 0 on the velocity.
+  SwayEstimatorSettings set;
+  set.initial_position_sigma = 1.0;
+  set.measurement_noise = 0.5;
+  SwayEstimator e(set);
+  const SwayUpdate u = e.update(Eigen::Vector2d(1.0, -2.0), Eigen::Vector2d::Zero());
+  ASSERT_TRUE(u.accepted);
+  EXPECT_NEAR(u.position_correction.x(), 1.0 / 1.25, 1e-12);
+  EXPECT_NEAR(u.position_correction.y(), -2.0 / 1.25, 1e-12);
+  EXPECT_NEAR(u.velocity_correction.norm(), 0.0, 1e-12);
+  EXPECT_NEAR(e.covariance()(0, 0), 1.0 * 0.25 / 1.25, 1e-12);
+  // An outlier beyond the gate is refused and changes nothing.
+  const Eigen::Matrix4d P = e.covariance();
+  const SwayUpdate o = e.update(Eigen::Vector2d(100.0, 0.0), Eigen::Vector2d::Zero());
+  EXPECT_FALSE(o.accepted);
+  EXPECT_EQ(e.covariance(), P);
+  EXPECT_THROW(e.predict(-1.0, 60.0, 9.81), std::invalid_argument);
+  set.measurement_noise = 0.0;
+  EXPECT_THROW(SwayEstimator bad(set), std::invalid_argument);
+}
+
+TEST(SwayEstimator, LocksALinearPendulumOntoTheTruthFromNoisyMeasurements) {
+  // Truth: a 62 m pendulum swinging 1.5 m in x and 0.8 m in y (closed form). The twin starts at
+  // rest; 5 Hz measurements with 5 cm noise; between them both evolve by the same closed form.
+  // After 30 s the twin is within 0.1 m, and its 1-sigma radius is consistent with that.
+  const double g = 9.81, l = 62.0, w = std::sqrt(g / l), h = 0.2;
+  auto propagate = [&](Eigen::Vector4d& x, double dt) {
+    const double c = std::cos(w * dt), s = std::sin(w * dt);
+    for (int a = 0; a < 2; ++a) {
+      const double p = x[a], v = x[a + 2];
+      x[a] = c * p + s / w * v;
+      x[a + 2] = -w * s * p + c * v;
+    }
+  };
+  Eigen::Vector4d truth(1.5, 0.0, 0.0, 0.8 * w), twin = Eigen::Vector4d::Zero();
+  SwayEstimator e;
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.05);
+  double worst_late = 0.0;
+  for (int k = 1; k <= 300; ++k) {  // 60 s
+    propagate(truth, h);
+    propagate(twin, h);
+    e.predict(h, l, g);
+    const Eigen::Vector2d z = truth.head<2>() + Eigen::Vector2d(noise(rng), noise(rng));
+    const SwayUpdate u = e.update(z, twin.head<2>());
+    twin.head<2>() += u.position_correction;
+    twin.tail<2>() += u.velocity_correction;
+    if (k * h >= 30.0) worst_late = std::max(worst_late, (twin.head<2>() - truth.head<2>()).norm());
+  }
+  EXPECT_LT(worst_late, 0.1);
+  EXPECT_LT(e.positionSigma(), 0.05);
+  EXPECT_GT(e.positionSigma(), 0.001);
+}
+
+TEST(MeasuredJointFollower, FollowsJitteryMeasurementsWithinTheDriveLimitsAndBridgesAGap) {
+  // A crane accelerating at its drives' limits to 0.05 rad/s of slewing, 0.4 m/s of trolley
+  // travel out and 0.1 m/s of hoisting, measured at 20 Hz with +-10 ms jitter, no velocities,
+  // and a 1 s gap. The model's drives (5 ms steps) follow: after 5 s within 0.005 rad and 5 cm,
+  // the gap included (bridged by extrapolation, flagged stale); never above the limits.
+  const Scene scene = loadScene(kScenes + "t8036_live.yaml", {"trolley.radius=30"});
+  const CraneDescription& crane = *scene.crane;
+  CraneDrives drives(scene);
+  MeasuredJointFollower follower;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+  // Speed v reached at acceleration a: x(t) = v t - v^2 / (2 a) after t = v / a.
+  auto ramp = [](double t, double v, double a) {
+    const double t1 = v / a;
+    return t < t1 ? 0.5 * a * t * t : v * t - v * v / (2.0 * a);
+  };
+  auto real = [&](double t) {
+    t = std::max(t, 0.0);
+    return Eigen::Vector3d(ramp(t, 0.05, crane.slewing.max_acceleration),
+                           30.0 + ramp(t, 0.4, crane.trolley.max_acceleration),
+                           60.0 - ramp(t, 0.1, crane.hoist.max_acceleration));
+  };
+  const double dt = 0.005;
+  double next_sample = 0.0, worst_slew = 0.0, worst_trolley = 0.0;
+  bool stale_in_gap = false;
+  for (int k = 0; k < 4000; ++k) {  // 20 s
+    const double t = k * dt;
+    if (t >= next_sample) {
+      const bool gap = t > 10.0 && t < 11.0;
+      if (!gap) {
+        JointSample s;
+        s.t = t;
+        s.position = real(t + jitter(rng));
+        EXPECT_EQ(follower.add(s, crane), "");
+      }
+      next_sample += 0.05;
+    }
+    if (t > 10.7 && t < 11.0) stale_in_gap |= follower.stale(t);
+    drives.setCommand(follower.command(t, drives, crane));
+    drives.advance(t, dt);
+    EXPECT_LE(std::abs(drives.slewRate()), crane.slewing.max_speed + 1e-12);
+    EXPECT_LE(std::abs(drives.trolleySpeed()), crane.trolley.max_speed + 1e-12);
+    if (std::getenv("TWIN_TEST_TRACE") && k % 100 == 0)
+      std::printf("%.2f %.5f %.4f\n", t, drives.slewAngle() - real(t + dt).x(),
+                  drives.trolleyRadius() - real(t + dt).y());
+    if (t > 5.0) {
+      worst_slew = std::max(worst_slew, std::abs(drives.slewAngle() - real(t + dt).x()));
+      worst_trolley = std::max(worst_trolley, std::abs(drives.trolleyRadius() - real(t + dt).y()));
+    }
+  }
+  EXPECT_LT(worst_slew, 0.005);
+  EXPECT_LT(worst_trolley, 0.05);
+  EXPECT_TRUE(stale_in_gap);
+  // Refused: NaN, out of order, off the rail.
+  JointSample bad;
+  bad.t = 100.0;
+  bad.position = Eigen::Vector3d(0.0, std::nan(""), 30.0);
+  EXPECT_NE(follower.add(bad, crane), "");
+  bad.position = Eigen::Vector3d(0.0, 30.0, 30.0);
+  bad.t = 1.0;
+  EXPECT_NE(follower.add(bad, crane), "");
+  bad.t = 100.0;
+  bad.position.y() = 95.0;
+  EXPECT_NE(follower.add(bad, crane).find("trolley radius"), std::string::npos);
+  EXPECT_EQ(follower.refused(), 3);
+}
