@@ -24,6 +24,7 @@ void JointFollowerSettings::check() const {
   positive(max_extrapolation, "max_extrapolation");
   positive(stale_after, "stale_after");
   positive(velocity_window, "velocity_window");
+  positive(hold_window, "hold_window");
 }
 
 MeasuredJointFollower::MeasuredJointFollower(const JointFollowerSettings& settings)
@@ -45,11 +46,14 @@ std::string MeasuredJointFollower::add(const JointSample& s, const CraneDescript
     return refuse("non-finite joint value");
   }
   if (last_ && s.t < last_->t) return refuse("sample older than the newest one");
-  if (s.position.y() < crane.min_radius - 1e-6 || s.position.y() > crane.max_radius + 1e-6) {
+  // Sensor noise at a limit is normal: within kLimitMargin beyond it the sample is taken (the
+  // drive stops the model at its limit and flags it); further out it is refused.
+  const double m = MeasuredJointFollower::kLimitMargin;
+  if (s.position.y() < crane.min_radius - m || s.position.y() > crane.max_radius + m) {
     return refuse("trolley radius " + std::to_string(s.position.y()) + " m outside [" +
                   std::to_string(crane.min_radius) + ", " + std::to_string(crane.max_radius) + "]");
   }
-  if (s.position.z() < crane.min_rope_length - 1e-6 || s.position.z() > crane.max_rope_length + 1e-6) {
+  if (s.position.z() < crane.min_rope_length - m || s.position.z() > crane.max_rope_length + m) {
     return refuse("rope length " + std::to_string(s.position.z()) + " m outside [" +
                   std::to_string(crane.min_rope_length) + ", " +
                   std::to_string(crane.max_rope_length) + "]");
@@ -57,7 +61,8 @@ std::string MeasuredJointFollower::add(const JointSample& s, const CraneDescript
   if (last_ && s.t == last_->t && !window_.empty()) window_.pop_back();  // the newer wins
   last_ = s;
   window_.push_back(s);
-  while (window_.size() > 2 && window_.front().t < s.t - settings_.velocity_window) {
+  const double keep = std::max(settings_.velocity_window, settings_.hold_window);
+  while (window_.size() > 2 && window_.front().t < s.t - keep) {
     window_.pop_front();
   }
   return "";
@@ -72,15 +77,31 @@ bool MeasuredJointFollower::stale(double t) const { return !(age(t) <= settings_
 Eigen::Vector3d MeasuredJointFollower::rates(double t) const {
   if (!last_ || !(age(t) <= settings_.max_extrapolation)) return Eigen::Vector3d::Zero();
   if (last_->velocity) return *last_->velocity;
+  return slope(settings_.velocity_window);
+}
+
+Eigen::Vector3d MeasuredJointFollower::holdRates(double t) const {
+  if (!last_ || !(age(t) <= settings_.max_extrapolation)) return Eigen::Vector3d::Zero();
+  if (last_->velocity) return *last_->velocity;
+  return slope(settings_.hold_window);
+}
+
+Eigen::Vector3d MeasuredJointFollower::slope(double window) const {
   // Least-squares slope v = sum (t_i - tm)(x_i - x_last) / sum (t_i - tm)^2, the slew angles
   // unwrapped against the newest.
-  if (window_.size() < 2) return Eigen::Vector3d::Zero();
   double tm = 0.0;
-  for (const JointSample& w : window_) tm += w.t;
-  tm /= static_cast<double>(window_.size());
+  int n = 0;
+  for (const JointSample& w : window_) {
+    if (w.t < last_->t - window) continue;
+    tm += w.t;
+    ++n;
+  }
+  if (n < 2) return Eigen::Vector3d::Zero();
+  tm /= static_cast<double>(n);
   double stt = 0.0;
   Eigen::Vector3d stx = Eigen::Vector3d::Zero();
   for (const JointSample& w : window_) {
+    if (w.t < last_->t - window) continue;
     Eigen::Vector3d d = w.position - last_->position;
     d.x() = wrapAngle(d.x());
     stt += (w.t - tm) * (w.t - tm);

@@ -21,31 +21,12 @@
 #include "crane_twin/io/site_description.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
 #include "crane_twin/integrators/numerical_failure.hpp"
+#include "node_params.hpp"
 #include "ros_messages.hpp"
 
 namespace crane_twin {
 
 namespace {
-
-// A parameter that is present must have the right type: a silently ignored typo is worse
-// than a refusal.
-template <typename T>
-void optionalParam(const ros::NodeHandle& pnh, const std::string& name, T& value,
-                   const char* type) {
-  if (!pnh.hasParam(name)) return;
-  if (!pnh.getParam(name, value)) {
-    throw InputError("parameter '" + pnh.resolveName(name) + "' must be " + type);
-  }
-}
-
-void requireFinite(const std::string& name, double v, double min, bool strict) {
-  if (!std::isfinite(v) || v < min || (strict && v == min)) {
-    std::ostringstream s;
-    s << "parameter '~" << name << "' = " << v << " must be a finite number "
-      << (strict ? "> " : ">= ") << min;
-    throw InputError(s.str());
-  }
-}
 
 CommandEntry entryOf(const CraneCommand& m) {
   CommandEntry c;
@@ -129,6 +110,7 @@ NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
     optionalParam(pnh, "recorded_topics", s.recorded_topics, "a list of topic names");
   }
   if (s.recorded_topics.empty()) s.recorded_topics = {"crane/state"};
+  s.twin = readTwinSettings(pnh);
   optionalParam(pnh, "displacement_scale", s.snapshot.displacement_scale, "a number");
   optionalParam(pnh, "rope_samples_per_element", s.snapshot.samples_per_element, "an integer");
   requireFinite("real_time_factor", s.real_time_factor, 0.0, false);
@@ -170,6 +152,18 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   if (settings_.duration < 0.0) settings_.duration = model_.scene.duration;
   paused_ = settings_.start_paused;
   awaiting_recorder_ = !settings_.wait_for_recorder.empty();
+  // The crane on the site: world -> <prefix>base, latched (docs/site.md).
+  frames_.prefix = settings_.frame_prefix;
+  Eigen::Vector3d base = model_.scene.site_position;
+  double yaw = model_.scene.site_yaw_deg * M_PI / 180.0;
+  if (!settings_.base_pose.empty()) {
+    base = Eigen::Vector3d(settings_.base_pose[0], settings_.base_pose[1], settings_.base_pose[2]);
+    yaw = settings_.base_pose[3];
+  }
+  if (settings_.twin.measured_input && !settings_.command_bag.empty()) {
+    throw InputError("parameters '~input' 'measured' and '~command_bag' exclude each other");
+  }
+  twin_ = std::make_unique<TwinAdapter>(nh_, settings_.twin, frames_, base, yaw);
   loadReplay();
   resetSimulation();
   // Queues for bursts: as fast as possible a recorder takes every publication.
@@ -179,14 +173,6 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   applied_pub_ = nh_.advertise<CraneCommand>("crane/command_applied", 50, true);
   diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 5);
   if (settings_.publish_clock) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
-  // The crane on the site: world -> <prefix>base, latched (docs/site.md).
-  frames_.prefix = settings_.frame_prefix;
-  Eigen::Vector3d base = model_.scene.site_position;
-  double yaw = model_.scene.site_yaw_deg * M_PI / 180.0;
-  if (!settings_.base_pose.empty()) {
-    base = Eigen::Vector3d(settings_.base_pose[0], settings_.base_pose[1], settings_.base_pose[2]);
-    yaw = settings_.base_pose[3];
-  }
   static_tf_.sendTransform(toBaseTransform(frames_, base, yaw, ros::Time::now()));
   command_sub_ = nh_.subscribe("crane/command", 20, &CraneSimNode::onCommand, this);
   trajectory_sub_ = nh_.subscribe("crane/joint_trajectory", 5, &CraneSimNode::onTrajectory, this);
@@ -251,6 +237,7 @@ void CraneSimNode::resetSimulation() {
 void CraneSimNode::restartSimulation() {
   sim_ = makeSimulation(model_);
   sim_->initialize();
+  twin_->restart(model_, *sim_);
   follower_.cancel();
   watchdog_ = CommandWatchdog(settings_.command_timeout);
   finished_ = failed_ = false;
@@ -287,6 +274,11 @@ void CraneSimNode::apply(const CommandEntry& c, const char* source) {
 }
 
 void CraneSimNode::onCommand(const CraneCommand::ConstPtr& msg) {
+  if (settings_.twin.measured_input) {
+    ++rejected_;
+    warnThrottled("~input measured: the twin follows crane/measured_joint_states; crane/command ignored");
+    return;
+  }
   if (!settings_.command_bag.empty()) {
     ++rejected_;
     warnThrottled("replaying a bag: live command on crane/command ignored");
@@ -325,6 +317,7 @@ void CraneSimNode::onTrajectory(const trajectory_msgs::JointTrajectory::ConstPtr
     ROS_WARN("crane_sim_node: trajectory rejected: %s", why.c_str());
   };
   if (!settings_.command_bag.empty()) return reject("replaying a bag");
+  if (settings_.twin.measured_input) return reject("~input measured: the twin follows the crane");
   if (failed_) return reject("the simulation stopped (" + failure_ + "); call ~reset");
   if (!model_.scene.crane) return reject("the scene has no crane (crane: none)");
   int index[3] = {-1, -1, -1};
@@ -466,6 +459,10 @@ void CraneSimNode::applyDueCommands() {
     apply(replay_.front().command, "replay");
     replay_.pop_front();
   }
+  if (settings_.twin.measured_input) {
+    sim_->setCommand(twin_->followCommand(*sim_));
+    return;
+  }
   if (settings_.command_bag.empty() && watchdog_.expired(t)) {
     apply(CommandEntry{}, "timeout");
     warnThrottled("no command for " + std::to_string(settings_.command_timeout) +
@@ -479,6 +476,9 @@ bool CraneSimNode::stepOnce() {
   const auto t0 = std::chrono::steady_clock::now();
   try {
     sim_->step();
+    twin_->afterStep(*sim_, model_.scene.time_step, [this](const ros::Time& s) {
+      return (s - stamp_origin_).toSec() - t_offset_;
+    });
   } catch (const std::exception& e) {  // NumericalFailure, or anything the model refuses
     failed_ = true;
     std::ostringstream s;
@@ -533,6 +533,23 @@ void CraneSimNode::publish() {
   last_state_.t += t_offset_;
   state_pub_.publish(last_state_);
   last_state_wall_ = now;
+  if (!failed_) twin_->publish(*sim_, st, forecastCommand(), [this](double t) { return stamp(t); });
+}
+
+PayloadForecaster::CommandSource CraneSimNode::forecastCommand() const {
+  const double t = sim_->time();
+  if (settings_.twin.measured_input) {
+    const CommandEntry c = twin_->measuredRates(t);
+    return [c](double, const CraneDrives&) { return c; };
+  }
+  if (follower_.active() && model_.scene.crane) {
+    const CraneDescription crane = *model_.scene.crane;
+    return [f = follower_, crane](double time, const CraneDrives& d) mutable {
+      return f.command(time, d, crane);
+    };
+  }
+  const CommandEntry c = sim_->drives().activeCommand(t);
+  return [c](double, const CraneDrives&) { return c; };
 }
 
 void CraneSimNode::publishNow() {
@@ -595,6 +612,7 @@ void CraneSimNode::publishDiagnostics() {
   num("pacing_overruns", static_cast<double>(overruns_));
   num("warnings_seen", warnings_seen_);
   kv("rope_model", model_.scene.rope.model);
+  twin_->diagnose(*sim_, d);
   a.status.push_back(d);
   diag_pub_.publish(a);
 }

@@ -24,6 +24,7 @@
 #include "crane_twin/analysis/crane_snapshot.hpp"
 #include "crane_twin/simulation/simulation.hpp"
 #include "ros_messages.hpp"
+#include "twin_adapter.hpp"
 
 namespace crane_twin {
 
@@ -57,6 +58,7 @@ struct NodeSettings {
   std::vector<double> base_pose;
   std::vector<std::string> recorded_topics;  ///< default: crane/state
   SnapshotOptions snapshot;
+  TwinSettings twin;  ///< measured input, sway estimator, forecast (docs/twin.md)
 };
 
 /// Read and check the private parameters. Throws InputError naming the parameter.
@@ -110,6 +112,10 @@ class CraneSimNode {
   bool onSetPayload(SetPayload::Request& req, SetPayload::Response& res);
   /// A new simulation of model_ from t_offset_ on, keeping the stamps' origin.
   void restartSimulation();
+  std::unique_ptr<TwinAdapter> twin_;
+  /// What the forecast assumes the drives are asked: the measured rates, the trajectory being
+  /// followed, or the operator's command held.
+  PayloadForecaster::CommandSource forecastCommand() const;
   tf2_ros::TransformBroadcaster tf_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   CraneFrames frames_;

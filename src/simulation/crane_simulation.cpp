@@ -84,15 +84,19 @@ void CraneSimulation::continueFrom(const Simulation& other) {
   }
 }
 
-void CraneSimulation::setRopeMotion(const Eigen::VectorXd& q, const Eigen::VectorXd& v) {
-  if (q.size() != state_.q.size() || v.size() != state_.v.size()) {
-    throw std::invalid_argument("setRopeMotion: " + std::to_string(q.size()) + " / " +
-                                std::to_string(v.size()) + " rope coordinates, the rope has " +
-                                std::to_string(state_.q.size()));
+void CraneSimulation::setMotion(const CoupledState& m) {
+  if (m.q.size() != state_.q.size() || m.v.size() != state_.v.size() ||
+      m.z.size() != state_.z.size() || m.zd.size() != state_.zd.size()) {
+    throw std::invalid_argument("setMotion: " + std::to_string(m.q.size()) + " rope and " +
+                                std::to_string(m.z.size()) + " support coordinates, the model has " +
+                                std::to_string(state_.q.size()) + " and " +
+                                std::to_string(state_.z.size()));
   }
   CoupledState s = state_;
-  s.q = q;
-  s.v = v;
+  s.q = m.q;
+  s.v = m.v;
+  s.z = m.z;
+  s.zd = m.zd;
   restartFrom(s);
 }
 

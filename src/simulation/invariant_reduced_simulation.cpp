@@ -79,18 +79,21 @@ void InvariantReducedSimulation::continueFrom(const Simulation& other) {
   }
 }
 
-void InvariantReducedSimulation::setRopeMotion(const Eigen::VectorXd& q,
-                                               const Eigen::VectorXd& v) {
-  if (full_order_) return full_.setRopeMotion(q, v);
+void InvariantReducedSimulation::setMotion(const CoupledState& m) {
+  if (full_order_) return full_.setMotion(m);
   syncFullRope();
+  solver_->refreshLength();  // the rope's length as the full model rounds it (tryHandBack)
   CoupledState f = solver_->expand(state_);
-  if (q.size() != f.q.size() || v.size() != f.v.size()) {
-    throw std::invalid_argument("setRopeMotion: " + std::to_string(q.size()) + " / " +
-                                std::to_string(v.size()) + " rope coordinates, the rope has " +
-                                std::to_string(f.q.size()));
+  if (m.q.size() != f.q.size() || m.v.size() != f.v.size() || m.z.size() != f.z.size() ||
+      m.zd.size() != f.zd.size()) {
+    throw std::invalid_argument("setMotion: " + std::to_string(m.q.size()) + " rope and " +
+                                std::to_string(m.z.size()) + " support coordinates, the model has " +
+                                std::to_string(f.q.size()) + " and " + std::to_string(f.z.size()));
   }
-  f.q = q;
-  f.v = v;
+  f.q = m.q;
+  f.v = m.v;
+  f.z = m.z;
+  f.zd = m.zd;
   CoupledState r = solver_->project(f);
   solver_->initializeAccelerations(r);
   state_ = r;

@@ -45,7 +45,7 @@ void Simulation::continueFrom(const Simulation&) {
                    "reduced (rope.reduction: invariant)");
 }
 
-void Simulation::setRopeMotion(const Eigen::VectorXd&, const Eigen::VectorXd&) {
+void Simulation::setMotion(const CoupledState&) {
   throw InputError("setting the rope's motion (the twin's sway correction) needs rope.model "
                    "full or reduced (rope.reduction: invariant)");
 }

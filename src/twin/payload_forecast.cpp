@@ -1,5 +1,6 @@
 #include "crane_twin/twin/payload_forecast.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
@@ -26,14 +27,28 @@ PayloadForecaster::PayloadForecaster(const CraneModel& model, double time_step) 
 
 PayloadForecast PayloadForecaster::run(const Simulation& twin, const CommandEntry& command,
                                        double horizon, double sample_period) {
+  return run(twin, [command](double, const CraneDrives&) { return command; }, horizon,
+             sample_period);
+}
+
+PayloadForecast PayloadForecaster::run(const Simulation& twin, const CommandSource& source,
+                                       double horizon, double sample_period) {
+  prepare(twin);
+  return runPrepared(source, horizon, sample_period);
+}
+
+void PayloadForecaster::prepare(const Simulation& twin) { sim_->continueFrom(twin); }
+
+PayloadForecast PayloadForecaster::runPrepared(const CommandSource& source, double horizon,
+                                               double sample_period) {
   if (!(horizon > 0.0) || !std::isfinite(horizon)) {
     throw std::invalid_argument("forecast horizon must be > 0");
   }
   if (!(sample_period > 0.0) || !std::isfinite(sample_period)) {
     throw std::invalid_argument("forecast sample period must be > 0");
   }
-  sim_->continueFrom(twin);
-  sim_->setCommand(command);
+  if (!source) throw std::invalid_argument("forecast without a command source");
+  const auto wall0 = std::chrono::steady_clock::now();
   PayloadForecast f;
   f.t0 = sim_->time();
   const double end = f.t0 + horizon, eps = 0.5 * time_step_;
@@ -55,11 +70,14 @@ PayloadForecast PayloadForecaster::run(const Simulation& twin, const CommandEntr
         next += sample_period;
       }
       if (sim_->time() >= end - eps) break;
+      sim_->setCommand(source(sim_->time(), sim_->drives()));
       sim_->step();
     }
   } catch (const NumericalFailure&) {
     f.failed = true;
   }
+  f.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return f;
 }
 

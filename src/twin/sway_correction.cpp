@@ -1,9 +1,12 @@
 #include "crane_twin/twin/sway_correction.hpp"
 
 #include <Eigen/Geometry>
+#include <cmath>
 #include <stdexcept>
 
 #include "crane_twin/integrators/coupled_state.hpp"
+#include "crane_twin/rope/rope_support.hpp"
+#include "crane_twin/structure/structure_support.hpp"
 
 namespace crane_twin {
 
@@ -39,7 +42,106 @@ void rotateRopeAboutTop(Eigen::VectorXd& q, Eigen::VectorXd& v, const Eigen::Vec
 void applySwayCorrection(Simulation& sim, const Eigen::Vector3d& dp, const Eigen::Vector3d& dv) {
   CoupledState f = sim.fullState();
   rotateRopeAboutTop(f.q, f.v, dp, dv);
-  sim.setRopeMotion(f.q, f.v);
+  sim.setMotion(f);
+}
+
+void applyTwinCorrection(Simulation& sim, const SwayUpdate& u, const std::vector<int>& modes) {
+  CoupledState f = sim.fullState();
+  if (!modes.empty()) {
+    if (u.structure_correction.size() != static_cast<int>(modes.size()) ||
+        u.structure_rate_correction.size() != static_cast<int>(modes.size())) {
+      throw std::invalid_argument("applyTwinCorrection: update and mode list differ in size");
+    }
+    Eigen::VectorXd dz = Eigen::VectorXd::Zero(f.z.size()), dzd = dz;
+    for (std::size_t k = 0; k < modes.size(); ++k) {
+      if (modes[k] < 0 || modes[k] >= f.z.size()) {
+        throw std::invalid_argument("applyTwinCorrection: mode index out of range");
+      }
+      dz[modes[k]] = u.structure_correction[k];
+      dzd[modes[k]] = u.structure_rate_correction[k];
+    }
+    f.z += dz;
+    f.zd += dzd;
+    // The rope goes with its top: translated by the trolley point's motion.
+    const Eigen::Vector3d dp = sim.support().pointMotion(dz), dv = sim.support().pointMotion(dzd);
+    for (int j = 0; 6 * j < f.q.size(); ++j) {
+      f.q.segment<3>(6 * j) += dp;
+      f.v.segment<3>(6 * j) += dv;
+    }
+  }
+  rotateRopeAboutTop(f.q, f.v,
+                     Eigen::Vector3d(u.position_correction.x(), u.position_correction.y(), 0.0),
+                     Eigen::Vector3d(u.velocity_correction.x(), u.velocity_correction.y(), 0.0));
+  sim.setMotion(f);
+}
+
+namespace {
+
+Eigen::Matrix2Xd modeMotions(const Simulation& sim, const std::vector<int>& modes) {
+  const RopeSupport& support = sim.support();
+  Eigen::Matrix2Xd phi(2, modes.size());
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(support.size());
+  for (std::size_t k = 0; k < modes.size(); ++k) {
+    e.setZero();
+    e[modes[k]] = 1.0;
+    phi.col(k) = support.pointMotion(e).head<2>();
+  }
+  return phi;
+}
+
+}  // namespace
+
+std::vector<int> swayCouplingModes(const Simulation& sim, double max_hz, int max_modes) {
+  const auto* modal = dynamic_cast<const ModalStructureSupport*>(&sim.support());
+  if (!modal) return {};
+  const Eigen::VectorXd& w2 = modal->omega2();
+  const double w2_max = std::pow(2.0 * M_PI * max_hz, 2);
+  std::vector<int> low;
+  for (int k = 0; k < w2.size(); ++k)
+    if (w2[k] <= w2_max) low.push_back(k);
+  const Eigen::Matrix2Xd phi = modeMotions(sim, low);
+  Eigen::VectorXd e = Eigen::VectorXd::Zero(sim.support().size());
+  double largest = 0.0;
+  for (int k = 0; k < phi.cols(); ++k) largest = std::max(largest, phi.col(k).norm());
+  std::vector<int> out;
+  for (int k = 0; k < phi.cols() && static_cast<int>(out.size()) < max_modes; ++k) {
+    e.setZero();
+    e[low[k]] = 1.0;
+    const double vertical = std::abs(sim.support().pointMotion(e).z());
+    // Mostly sideways at the trolley: a payload's horizontal position cannot tell a mode that
+    // mostly lifts the trolley, and correcting one would move the load up and down.
+    if (largest > 0.0 && phi.col(k).norm() >= 0.05 * largest && phi.col(k).norm() >= vertical) {
+      out.push_back(low[k]);
+    }
+  }
+  return out;
+}
+
+SwayModel swayModelAt(const Simulation& sim, const std::vector<int>& modes, double gravity) {
+  SwayModel m;
+  m.gravity = gravity;
+  const SeriesValues v = sim.series();
+  m.length = std::max((v.payload - v.trolley).norm(), 1e-3);
+  m.tension = v.rope_top_tension;
+  m.omega2 = Eigen::VectorXd::Zero(modes.size());
+  m.damping = Eigen::VectorXd::Zero(modes.size());
+  if (!modes.empty()) {
+    const auto* modal = dynamic_cast<const ModalStructureSupport*>(&sim.support());
+    if (!modal) throw std::invalid_argument("swayModelAt: structure modes without a modal structure");
+    for (std::size_t k = 0; k < modes.size(); ++k) {
+      m.omega2[k] = modal->omega2()[modes[k]];
+      m.damping[k] = modal->dampingTerms()[modes[k]];
+    }
+  }
+  m.phi = modeMotions(sim, modes);
+  return m;
+}
+
+Eigen::VectorXd modeMotionNorms(const Simulation& sim, const std::vector<int>& modes) {
+  const Eigen::Matrix2Xd phi = modeMotions(sim, modes);
+  Eigen::VectorXd n(phi.cols());
+  for (int k = 0; k < phi.cols(); ++k) n[k] = phi.col(k).norm();
+  return n;
 }
 
 }  // namespace crane_twin

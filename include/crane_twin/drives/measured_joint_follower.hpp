@@ -36,21 +36,30 @@ struct JointFollowerSettings {
   double max_extrapolation = 1.0;  ///< [s]
   double stale_after = 0.5;        ///< [s]
   double velocity_window = 0.5;    ///< [s]
+  /// The longer window of the held rates a forecast assumes [s] (holdRates): the slope's noise
+  /// falls as window^-1.5, and a forecast wants the rate, not the last half second's wobble.
+  double hold_window = 2.0;
   /// Throws std::invalid_argument naming the field.
   void check() const;
 };
 
 class MeasuredJointFollower {
  public:
+  /// How far beyond a radius or rope-length limit a measurement is still taken [m].
+  static constexpr double kLimitMargin = 0.5;
   explicit MeasuredJointFollower(const JointFollowerSettings& settings = {});
   /// A new measurement. "" when taken, else why it was refused (non-finite values, a time
-  /// before the newest sample's, a radius or rope length outside the crane's limits).
+  /// before the newest sample's, a radius or rope length more than kLimitMargin outside the
+  /// crane's limits).
   std::string add(const JointSample& sample, const CraneDescription& crane);
   /// Rate command for the drives at time t (zero rates before the first sample).
   CommandEntry command(double t, const CraneDrives& drives, const CraneDescription& crane) const;
   /// The measured joint rates the command extrapolates with (zero without a sample, or
   /// beyond max_extrapolation).
   Eigen::Vector3d rates(double t) const;
+  /// The rates a forecast holds: measured velocities, else the least-squares slope over
+  /// hold_window (zero without samples or beyond max_extrapolation).
+  Eigen::Vector3d holdRates(double t) const;
   bool hasSample() const { return last_.has_value(); }
   /// No sample within stale_after of t (or none at all).
   bool stale(double t) const;
@@ -62,7 +71,8 @@ class MeasuredJointFollower {
  private:
   JointFollowerSettings settings_;
   std::optional<JointSample> last_;
-  std::deque<JointSample> window_;  ///< samples within velocity_window of the newest
+  std::deque<JointSample> window_;  ///< samples within hold_window of the newest
+  Eigen::Vector3d slope(double window) const;
   long refused_ = 0;
 };
 

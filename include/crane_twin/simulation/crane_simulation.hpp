@@ -61,7 +61,7 @@ class CraneSimulation final : public SupportedRopeSimulation {
   }
 
   void continueFrom(const Simulation& other) override;
-  void setRopeMotion(const Eigen::VectorXd& q, const Eigen::VectorXd& v) override;
+  void setMotion(const CoupledState& s) override;
   /// The initial full-order state of the scene (what initialize() starts from).
   CoupledState initialState();
   /// Rope modes (with the end mass) linearised at the static equilibrium without holding force:

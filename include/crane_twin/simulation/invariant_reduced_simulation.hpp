@@ -64,7 +64,7 @@ class InvariantReducedSimulation final : public Simulation {
   void continueFrom(const Simulation& other) override;
   /// Reduced: the motion projected onto the basis (exact for a rigid rotation of a state the
   /// basis carries); at full order: the full model's.
-  void setRopeMotion(const Eigen::VectorXd& q, const Eigen::VectorXd& v) override;
+  void setMotion(const CoupledState& s) override;
   /// The rope length being integrated [m] (the full rope's only while at full order).
   double ropeLength() const;
   int subdomains() const override { return 1; }  ///< one basis for the whole run

@@ -91,12 +91,12 @@ class Simulation {
   /// same step the two then run identically. Throws InputError for another model type or a
   /// model that does not support it (docs/twin.md).
   virtual void continueFrom(const Simulation& other);
-  /// Replace the rope's positions and velocities by q, v (the rope model's full coordinates, as
-  /// fullState() gives them; the top node must stay on the support), keeping the support and the
-  /// drives; accelerations are made consistent again. The twin's sway correction
-  /// (docs/twin.md). Throws InputError where the model does not support it,
-  /// std::invalid_argument for wrong sizes.
-  virtual void setRopeMotion(const Eigen::VectorXd& q, const Eigen::VectorXd& v);
+  /// Replace the positions and velocities of the rope and the support by s.q, s.v, s.z, s.zd
+  /// (full coordinates, as fullState() gives them; the rope's top node must stay on the
+  /// support's point), keeping the drives and the time; accelerations are made consistent
+  /// again. The twin's correction (docs/twin.md). Throws InputError where the model does not
+  /// support it, std::invalid_argument for wrong sizes.
+  virtual void setMotion(const CoupledState& s);
   /// `t,node,x,y,z` rows for every rope node.
   void writeNodeRows(std::ostream& out) const;
 };

@@ -99,6 +99,9 @@ class ModalStructureSupport final : public StructureSupportBase {
     return (D_.transpose() * f).cwiseQuotient(diagonal_);
   }
   double energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const override;
+  /// Omega_k^2 [rad^2/s^2] and 2 zeta Omega_k [1/s] of the modal coordinates z.
+  const Eigen::VectorXd& omega2() const { return omega2_; }
+  const Eigen::VectorXd& dampingTerms() const { return damping_; }
 
  private:
   Eigen::VectorXd omega2_, damping_;  ///< Omega^2, 2 zeta Omega

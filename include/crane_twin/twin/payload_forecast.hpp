@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -23,6 +24,7 @@ struct PayloadForecast {
   double max_swing = 0.0;       ///< largest horizontal payload offset from the trolley [m]
   double max_swing_time = 0.0;  ///< when [s]
   bool failed = false;          ///< the forecast run failed numerically (path up to then)
+  double wall_seconds = 0.0;    ///< what the run cost [s of wall time]
 };
 
 class PayloadForecaster {
@@ -35,6 +37,14 @@ class PayloadForecaster {
   /// horizon or sample period not > 0 and what continueFrom throws.
   PayloadForecast run(const Simulation& twin, const CommandEntry& command, double horizon,
                       double sample_period);
+  /// The same with the command asked for before every step (a trajectory being followed).
+  using CommandSource = std::function<CommandEntry(double t, const CraneDrives& drives)>;
+  PayloadForecast run(const Simulation& twin, const CommandSource& source, double horizon,
+                      double sample_period);
+  /// The two halves of run(), for a forecast on another thread: prepare() copies the twin's
+  /// state (cheap, on the twin's thread); runPrepared() then touches only the forecaster.
+  void prepare(const Simulation& twin);
+  PayloadForecast runPrepared(const CommandSource& source, double horizon, double sample_period);
   double timeStep() const { return time_step_; }
 
  private:

@@ -1,26 +1,45 @@
-// The estimator's correction carried into a running simulation (docs/twin.md): the rope turned
-// rigidly about its top node (the trolley point) so that its end moves by dp, and given the
-// rigid rotation rate that adds dv to the end's velocity; the support, the drives and the
-// rope's shape relative to the chord are unchanged. ANCF coordinates (positions r_j and slopes
+// The estimator's correction carried into a running simulation (docs/twin.md): the structure's
+// modal coordinates and rates by d_eta, d_eta' (the trolley point moves by D d_eta, the whole
+// rope translated with it so it stays attached), then the rope turned rigidly about its top
+// node so that its end moves by dp relative to the trolley, with the rigid rotation rate that
+// adds dv to the end's velocity relative to the top. ANCF coordinates (positions r_j and slopes
 // r'_j per node): with rho = r_end - r_top, theta = rho x dp / |rho|^2, R = exp(theta),
 //   r_j -> r_top + R (r_j - r_top),   r'_j -> R r'_j,
 //   v_j -> v_top + R (v_j - v_top) + w x R (r_j - r_top),   v'_j -> R v'_j + w x R r'_j,
-// w = R rho x u / |rho|^2 with u = dv - (R - I)(v_end - v_top) (the end's velocity gains dv).
-// Components of dp and dv along the rope (stretching it) are not applied.
+// w = R rho x u / |rho|^2 with u = dv - (R - I)(v_end - v_top). Components of dp and dv along
+// the rope (stretching it) are not applied.
 #pragma once
 
 #include <Eigen/Dense>
+#include <vector>
 
 #include "crane_twin/simulation/simulation.hpp"
+#include "crane_twin/twin/sway_estimator.hpp"
 
 namespace crane_twin {
 
-/// The rope's full coordinates (q, v) after the correction (q, v of an ANCF rope, 6 per node).
+/// The rope's full coordinates (q, v) turned about the top node (ANCF: 6 per node).
 /// Throws std::invalid_argument for sizes that are not 6 per node (>= 2 nodes).
 void rotateRopeAboutTop(Eigen::VectorXd& q, Eigen::VectorXd& v, const Eigen::Vector3d& dp,
                         const Eigen::Vector3d& dv);
 
-/// Apply it to a simulation (Simulation::setRopeMotion). Throws what that throws.
+/// Only the rope's swing (no structure modes). Throws what Simulation::setMotion throws.
 void applySwayCorrection(Simulation& sim, const Eigen::Vector3d& dp, const Eigen::Vector3d& dv);
+
+/// The whole update: modal coordinates `modes` (indices into the support's z) by the update's
+/// structure corrections, then the swing. Throws what Simulation::setMotion throws.
+void applyTwinCorrection(Simulation& sim, const SwayUpdate& update, const std::vector<int>& modes);
+
+/// Structure modes a payload measurement can see: those of a modal structure under max_hz that
+/// move the trolley point more sideways than up or down, by at least 5 % of the largest sideways
+/// motion (at the current pose); at most max_modes, lowest first. Empty for a rigid or full
+/// structure or no crane.
+std::vector<int> swayCouplingModes(const Simulation& sim, double max_hz = 1.0, int max_modes = 6);
+
+/// The estimator's linearised model at the simulation's current pose for those modes.
+SwayModel swayModelAt(const Simulation& sim, const std::vector<int>& modes, double gravity);
+
+/// |Phi_k| of those modes at the current pose [m per unit modal coordinate].
+Eigen::VectorXd modeMotionNorms(const Simulation& sim, const std::vector<int>& modes);
 
 }  // namespace crane_twin

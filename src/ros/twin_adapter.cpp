@@ -1,0 +1,360 @@
+#include "twin_adapter.hpp"
+
+#include <geometry_msgs/PoseWithCovarianceStamped.h>
+#include <nav_msgs/Path.h>
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "crane_twin/io/input_error.hpp"
+#include "crane_twin/twin/sway_correction.hpp"
+#include "node_params.hpp"
+
+namespace crane_twin {
+
+TwinSettings readTwinSettings(const ros::NodeHandle& pnh) {
+  TwinSettings s;
+  std::string input = "commands";
+  optionalParam(pnh, "input", input, "'commands' or 'measured'");
+  if (input != "commands" && input != "measured") {
+    throw InputError("parameter '~input' '" + input + "' must be 'commands' or 'measured'");
+  }
+  s.measured_input = input == "measured";
+  optionalParam(pnh, "follow_gain", s.follower.gain, "a number");
+  optionalParam(pnh, "joint_extrapolation", s.follower.max_extrapolation, "a number");
+  optionalParam(pnh, "joint_stale_after", s.follower.stale_after, "a number");
+  optionalParam(pnh, "payload_noise", s.estimator.measurement_noise, "a number");
+  optionalParam(pnh, "sway_process_noise", s.estimator.process_noise, "a number");
+  optionalParam(pnh, "initial_sway_sigma", s.estimator.initial_position_sigma, "a number");
+  optionalParam(pnh, "initial_sway_rate_sigma", s.estimator.initial_velocity_sigma, "a number");
+  optionalParam(pnh, "innovation_gate", s.estimator.gate, "a number");
+  optionalParam(pnh, "payload_timeout", s.payload_timeout, "a number");
+  optionalParam(pnh, "forecast_horizon", s.forecast_horizon, "a number");
+  optionalParam(pnh, "forecast_rate", s.forecast_rate, "a number");
+  optionalParam(pnh, "forecast_time_step", s.forecast_time_step, "a number");
+  optionalParam(pnh, "forecast_sample_period", s.forecast_sample_period, "a number");
+  requireFinite("follow_gain", s.follower.gain, 0.0, true);
+  requireFinite("joint_extrapolation", s.follower.max_extrapolation, 0.0, true);
+  requireFinite("joint_stale_after", s.follower.stale_after, 0.0, true);
+  requireFinite("payload_noise", s.estimator.measurement_noise, 0.0, true);
+  requireFinite("sway_process_noise", s.estimator.process_noise, 0.0, true);
+  requireFinite("initial_sway_sigma", s.estimator.initial_position_sigma, 0.0, true);
+  requireFinite("initial_sway_rate_sigma", s.estimator.initial_velocity_sigma, 0.0, true);
+  requireFinite("innovation_gate", s.estimator.gate, 0.0, true);
+  requireFinite("payload_timeout", s.payload_timeout, 0.0, true);
+  requireFinite("forecast_horizon", s.forecast_horizon, 0.0, true);
+  requireFinite("forecast_rate", s.forecast_rate, 0.0, false);
+  requireFinite("forecast_time_step", s.forecast_time_step, 0.0, false);
+  requireFinite("forecast_sample_period", s.forecast_sample_period, 0.0, true);
+  return s;
+}
+
+TwinAdapter::TwinAdapter(ros::NodeHandle nh, const TwinSettings& settings,
+                         const CraneFrames& frames, const Eigen::Vector3d& base_position,
+                         double base_yaw)
+    : nh_(nh),
+      settings_(settings),
+      frames_(frames),
+      base_position_(base_position),
+      base_yaw_(base_yaw),
+      follower_(settings.follower) {
+  settings_.estimator.check();
+  joint_sub_ = nh_.subscribe("crane/measured_joint_states", 200, &TwinAdapter::onJoints, this);
+  payload_sub_ = nh_.subscribe("crane/measured_payload", 50, &TwinAdapter::onPayload, this);
+  tension_sub_ = nh_.subscribe("crane/measured_tension", 50, &TwinAdapter::onTension, this);
+  estimate_pub_ =
+      nh_.advertise<geometry_msgs::PoseWithCovarianceStamped>("crane/payload_estimate", 50);
+  forecast_pub_ = nh_.advertise<nav_msgs::Path>("crane/forecast", 5, true);
+}
+
+void TwinAdapter::restart(const CraneModel& model, const Simulation& sim) {
+  crane_ = model.scene.crane ? &*model.scene.crane : nullptr;
+  end_mass_ = model.end_mass;
+  hook_mass_ = model.scene.hookBlockMass();
+  gravity_ = model.scene.gravity;
+  follower_.clear();
+  modes_ = swayCouplingModes(sim);
+  estimator_ = std::make_unique<SwayEstimator>(settings_.estimator, modeMotionNorms(sim, modes_));
+  joints_in_.clear();
+  payload_in_.clear();
+  tension_in_.clear();
+  last_payload_t_ = -1e300;
+  tension_ratio_ = 1.0;
+  tension_seen_ = false;
+  if (forecast_job_.valid()) forecast_job_.wait();  // it runs on the old forecaster
+  forecast_job_ = {};
+  last_forecast_ = PayloadForecast{};
+  forecaster_.reset();
+  forecast_error_.clear();
+  if (settings_.forecast_rate > 0.0) {
+    forecaster_ = std::make_unique<PayloadForecaster>(model, settings_.forecast_time_step);
+  }
+  if (settings_.measured_input && !crane_) {
+    throw InputError("parameter '~input' 'measured' needs a scene with a crane");
+  }
+}
+
+void TwinAdapter::warn(const std::string& what) {
+  const ros::WallTime now = ros::WallTime::now();
+  if ((now - last_warn_wall_).toSec() < 2.0) return;
+  last_warn_wall_ = now;
+  ROS_WARN("crane_sim_node (twin): %s", what.c_str());
+}
+
+void TwinAdapter::onJoints(const sensor_msgs::JointState::ConstPtr& m) {
+  if (!settings_.measured_input) return;
+  joints_in_.push_back(*m);
+  if (joints_in_.size() > 1000) joints_in_.pop_front();
+}
+
+void TwinAdapter::onPayload(const geometry_msgs::PointStamped::ConstPtr& m) {
+  const Eigen::Vector3d p = fromMsg(m->point);
+  const std::string& f = m->header.frame_id;
+  Eigen::Vector3d base;
+  if (f.empty() || f == frames_.base()) {
+    base = p;
+  } else if (f == "world") {
+    base = Eigen::AngleAxisd(-base_yaw_, Eigen::Vector3d::UnitZ()) * (p - base_position_);
+  } else {
+    ++payload_refused_;
+    return warn("crane/measured_payload in frame '" + f + "' refused: give 'world' or '" +
+                frames_.base() + "'");
+  }
+  if (!base.allFinite()) {
+    ++payload_refused_;
+    return warn("crane/measured_payload with a non-finite coordinate refused");
+  }
+  payload_in_.emplace_back(m->header.stamp, base);
+  if (payload_in_.size() > 100) payload_in_.pop_front();
+}
+
+void TwinAdapter::onTension(const std_msgs::Float64::ConstPtr& m) {
+  if (!std::isfinite(m->data) || m->data < 0.0) {
+    return warn("crane/measured_tension must be a finite force >= 0 N, got " +
+                std::to_string(m->data));
+  }
+  tension_in_.push_back(m->data);
+  if (tension_in_.size() > 100) tension_in_.pop_front();
+}
+
+CommandEntry TwinAdapter::followCommand(const Simulation& sim) const {
+  return follower_.command(sim.time(), sim.drives(), *crane_);
+}
+
+CommandEntry TwinAdapter::measuredRates(double t) const {
+  const Eigen::Vector3d r = follower_.holdRates(t);
+  CommandEntry c;
+  c.slew_rate = r.x();
+  c.trolley_speed = r.y();
+  c.hoist_speed = r.z();
+  return c;
+}
+
+void TwinAdapter::afterStep(Simulation& sim, double h,
+                            const std::function<double(const ros::Time&)>& time_of) {
+  now_t_ = sim.time();
+  // A stamp in the twin's future (clocks apart) counts as now; none: on arrival.
+  auto when = [&](const ros::Time& stamp) {
+    return stamp.isZero() ? now_t_ : std::min(time_of(stamp), now_t_);
+  };
+  // Joint samples, stamped with the twin's time of arrival (docs/twin.md).
+  while (!joints_in_.empty()) {
+    const sensor_msgs::JointState m = joints_in_.front();
+    joints_in_.pop_front();
+    if (!crane_) continue;
+    JointSample s;
+    s.t = when(m.header.stamp);
+    const char* names[3] = {"slew", "trolley", "hoist"};
+    bool complete = true, velocities = m.velocity.size() == m.name.size();
+    Eigen::Vector3d v = Eigen::Vector3d::Zero();
+    for (int a = 0; a < 3; ++a) {
+      int i = -1;
+      for (std::size_t k = 0; k < m.name.size(); ++k)
+        if (m.name[k] == names[a]) i = static_cast<int>(k);
+      if (i < 0 || i >= static_cast<int>(m.position.size())) {
+        complete = false;
+        break;
+      }
+      s.position[a] = m.position[i];
+      if (velocities) v[a] = m.velocity[i];
+    }
+    if (!complete) {
+      warn("crane/measured_joint_states needs positions of slew, trolley and hoist");
+      continue;
+    }
+    if (velocities) s.velocity = v;
+    const std::string why = follower_.add(s, *crane_);
+    if (!why.empty()) warn("crane/measured_joint_states refused: " + why);
+  }
+  estimator_->predict(h);  // the error's covariance follows at the next update
+  while (!payload_in_.empty()) {
+    const double age = std::min(now_t_ - when(payload_in_.front().first), 1.0);
+    const Eigen::Vector3d z = payload_in_.front().second;
+    payload_in_.pop_front();
+    // The twin's payload when the measurement was taken, p(t - age) = p - v age.
+    const SeriesValues v = sim.series();
+    const Eigen::Vector3d p = v.payload - age * v.payload_velocity;
+    const SwayUpdate u = estimator_->update(z.head<2>(), p.head<2>(), swayModelAt(sim, modes_, gravity_));
+    if (u.reacquired) warn("sway estimator re-acquiring: 10 payload measurements refused in a row");
+    last_update_ = u;
+    last_payload_t_ = now_t_;
+    if (!u.accepted) {
+      ++payload_refused_;
+      warn("payload measurement beyond the innovation gate refused (" +
+           std::to_string(u.innovation.norm()) + " m from the twin)");
+      continue;
+    }
+    ++payload_updates_;
+    try {
+      applyTwinCorrection(sim, u, modes_);
+    } catch (const std::exception& e) {
+      ++correction_failures_;
+      correction_error_ = e.what();
+      warn(std::string("sway correction not applied: ") + e.what());
+    }
+  }
+  if (!tension_in_.empty()) {
+    const double twin_tension = sim.series().rope_top_tension;
+    while (!tension_in_.empty()) {
+      const double r = twin_tension > 0.0 ? tension_in_.front() / twin_tension : 1.0;
+      tension_in_.pop_front();
+      // Exponential filter over about 10 measurements.
+      tension_ratio_ = tension_seen_ ? tension_ratio_ + 0.1 * (r - tension_ratio_) : r;
+      tension_seen_ = true;
+    }
+  }
+}
+
+void TwinAdapter::publish(const Simulation& sim, const ros::Time& stamp,
+                          const PayloadForecaster::CommandSource& forecast_command,
+                          const std::function<ros::Time(double)>& stamp_of) {
+  Eigen::Vector3d p, cab, tip;
+  sim.sample(p, cab, tip);
+  geometry_msgs::PoseWithCovarianceStamped e;
+  e.header.stamp = stamp;
+  e.header.frame_id = frames_.base();
+  e.pose.pose.position = point(p);
+  e.pose.pose.orientation.w = 1.0;
+  // The payload's horizontal covariance H P H^T (the filter's, propagated to now); row-major
+  // 6 x 6 (x, y, z, rot x, rot y, rot z): the vertical position is not estimated (the
+  // measurement noise stands in), nor the rotation.
+  const SwayModel model = swayModelAt(sim, modes_, gravity_);
+  const Eigen::MatrixXd& P = estimator_->covariance(model);
+  const int K = static_cast<int>(modes_.size());
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2, P.rows());
+  H.leftCols(K) = model.phi;
+  H(0, 2 * K) = H(1, 2 * K + 1) = 1.0;
+  payload_covariance_ = H * P * H.transpose();
+  e.pose.covariance[0] = payload_covariance_(0, 0);
+  e.pose.covariance[1] = payload_covariance_(0, 1);
+  e.pose.covariance[6] = payload_covariance_(1, 0);
+  e.pose.covariance[7] = payload_covariance_(1, 1);
+  e.pose.covariance[14] = std::pow(settings_.estimator.measurement_noise, 2);
+  e.pose.covariance[21] = e.pose.covariance[28] = e.pose.covariance[35] = 1e6;
+  estimate_pub_.publish(e);
+
+  if (!forecaster_) return;
+  if (forecast_job_.valid()) {
+    if (forecast_job_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
+    collectForecast(stamp_of);
+  }
+  const ros::WallTime now = ros::WallTime::now();
+  if (!last_forecast_wall_.isZero() &&
+      (now - last_forecast_wall_).toSec() < 1.0 / settings_.forecast_rate) {
+    return;
+  }
+  last_forecast_wall_ = now;
+  try {
+    forecaster_->prepare(sim);  // the twin's state, copied on this thread
+  } catch (const std::exception& ex) {
+    forecast_error_ = ex.what();
+    return warn(std::string("forecast failed: ") + ex.what());
+  }
+  PayloadForecaster* f = forecaster_.get();
+  const double horizon = settings_.forecast_horizon, period = settings_.forecast_sample_period;
+  forecast_job_ = std::async(std::launch::async, [f, forecast_command, horizon, period]() {
+    return f->runPrepared(forecast_command, horizon, period);
+  });
+}
+
+void TwinAdapter::collectForecast(const std::function<ros::Time(double)>& stamp_of) {
+  try {
+    last_forecast_ = forecast_job_.get();
+    forecast_error_ = last_forecast_.failed ? "the forecast run failed numerically" : "";
+  } catch (const std::exception& ex) {
+    forecast_error_ = ex.what();
+    return warn(std::string("forecast failed: ") + ex.what());
+  }
+  nav_msgs::Path path;
+  path.header.stamp = stamp_of(last_forecast_.t0);
+  path.header.frame_id = "world";
+  const Eigen::AngleAxisd yaw(base_yaw_, Eigen::Vector3d::UnitZ());
+  for (std::size_t i = 0; i < last_forecast_.t.size(); ++i) {
+    geometry_msgs::PoseStamped ps;
+    ps.header.frame_id = "world";
+    ps.header.stamp = stamp_of(last_forecast_.t[i]);
+    ps.pose.position = point(base_position_ + yaw * last_forecast_.payload[i]);
+    ps.pose.orientation.w = 1.0;
+    path.poses.push_back(ps);
+  }
+  forecast_pub_.publish(path);
+}
+
+void TwinAdapter::diagnose(const Simulation& sim, diagnostic_msgs::DiagnosticStatus& d) const {
+  auto kv = [&d](const std::string& k, const std::string& v) {
+    diagnostic_msgs::KeyValue x;
+    x.key = k;
+    x.value = v;
+    d.values.push_back(x);
+  };
+  auto num = [&kv](const std::string& k, double v) {
+    std::ostringstream s;
+    s << v;
+    kv(k, s.str());
+  };
+  auto warn_level = [&d](const std::string& why) {
+    if (d.level < diagnostic_msgs::DiagnosticStatus::WARN) {
+      d.level = diagnostic_msgs::DiagnosticStatus::WARN;
+      d.message = why;
+    } else {
+      d.message += "; " + why;
+    }
+  };
+  const double t = sim.time();
+  kv("input", settings_.measured_input ? "measured" : "commands");
+  if (settings_.measured_input) {
+    num("joint_input_age_s", follower_.age(t));
+    kv("joint_input", !follower_.hasSample() ? "none yet" : follower_.stale(t) ? "stale" : "fresh");
+    num("joint_samples_refused", static_cast<double>(follower_.refused()));
+    if (follower_.stale(t)) warn_level("measured joint input stale or missing");
+  }
+  const bool closed = t - last_payload_t_ <= settings_.payload_timeout;
+  kv("sway_estimator", closed ? "closed loop (payload measurements)"
+                              : "open loop (no payload measurement)");
+  num("sway_uncertainty_m", estimator_->positionSigma());
+  num("structure_modes_estimated", static_cast<double>(modes_.size()));
+  num("innovation_m", last_update_.innovation.norm());
+  num("normalized_innovation", last_update_.normalized);
+  num("payload_updates", static_cast<double>(payload_updates_));
+  num("payload_measurements_refused", static_cast<double>(payload_refused_));
+  num("sway_corrections_failed", static_cast<double>(correction_failures_));
+  if (tension_seen_) {
+    num("tension_ratio_measured_to_twin", tension_ratio_);
+    // The hanging mass the measured tension implies, less the hook block.
+    num("payload_mass_estimate_kg", tension_ratio_ * end_mass_ - hook_mass_);
+    if (std::abs(tension_ratio_ - 1.0) > 0.05) {
+      warn_level("measured tension differs from the twin's by more than 5 % (~set_payload?)");
+    }
+  }
+  if (forecaster_) {
+    num("forecast_horizon_s", settings_.forecast_horizon);
+    num("forecast_cost_s", last_forecast_.wall_seconds);
+    num("forecast_cost_fraction", last_forecast_.wall_seconds / settings_.forecast_horizon);
+    num("forecast_max_swing_m", last_forecast_.max_swing);
+    num("forecast_max_swing_at_s", last_forecast_.max_swing_time);
+    if (!forecast_error_.empty()) kv("forecast_error", forecast_error_);
+  }
+}
+
+}  // namespace crane_twin

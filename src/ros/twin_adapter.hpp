@@ -1,0 +1,112 @@
+// The twin's ROS side (docs/twin.md), owned by crane_sim_node: measured joints, payload and
+// tension in; the estimate, the forecast and diagnostics out. The estimator, the joint follower
+// and the forecaster are the ROS-free core's (include/crane_twin/twin, drives); this class only
+// converts messages, queues them for the node's thread and calls the core between steps.
+#pragma once
+
+#include <diagnostic_msgs/DiagnosticStatus.h>
+#include <geometry_msgs/PointStamped.h>
+#include <ros/ros.h>
+#include <sensor_msgs/JointState.h>
+#include <std_msgs/Float64.h>
+
+#include <deque>
+#include <functional>
+#include <future>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "crane_twin/drives/measured_joint_follower.hpp"
+#include "crane_twin/simulation/crane_model.hpp"
+#include "crane_twin/twin/payload_forecast.hpp"
+#include "crane_twin/twin/sway_estimator.hpp"
+#include "ros_messages.hpp"
+
+namespace crane_twin {
+
+/// Parameters (private namespace of crane_sim_node; docs/twin.md has the table).
+struct TwinSettings {
+  bool measured_input = false;         ///< ~input: commands | measured
+  JointFollowerSettings follower;
+  SwayEstimatorSettings estimator;
+  double payload_timeout = 2.0;        ///< [s] without a payload measurement: open loop
+  double forecast_horizon = 30.0;      ///< [s]
+  double forecast_rate = 1.0;          ///< [Hz of wall time], 0: no forecast
+  double forecast_time_step = 0.02;    ///< [s], 0: the scene's
+  double forecast_sample_period = 0.5; ///< [s] between the path's poses
+};
+
+/// Read and check them. Throws InputError naming the parameter.
+TwinSettings readTwinSettings(const ros::NodeHandle& pnh);
+
+class TwinAdapter {
+ public:
+  /// `base_position`, `base_yaw`: the crane's base in the world (measurements may come in
+  /// either frame). Subscribes crane/measured_joint_states, crane/measured_payload,
+  /// crane/measured_tension; advertises crane/payload_estimate and crane/forecast.
+  TwinAdapter(ros::NodeHandle nh, const TwinSettings& settings, const CraneFrames& frames,
+              const Eigen::Vector3d& base_position, double base_yaw);
+  /// A new simulation `sim` of `model` started (reset, new load): the estimator back to its
+  /// prior with the structure modes it sees at the start, the forecaster rebuilt for the model.
+  /// Throws InputError for a forecast the model cannot run.
+  void restart(const CraneModel& model, const Simulation& sim);
+  bool measuredInput() const { return settings_.measured_input; }
+  /// The rate command that follows the measured joints (measured input), at twin time t.
+  CommandEntry followCommand(const Simulation& sim) const;
+  /// After a step of h seconds: the covariance propagated, the queued measurements applied
+  /// (joint samples to the follower, payload positions through the estimator into `sim`).
+  /// `time_of` maps a message stamp to twin time: a measurement counts at its stamp (latency
+  /// compensated), or on arrival when it has none.
+  void afterStep(Simulation& sim, double h, const std::function<double(const ros::Time&)>& time_of);
+  /// Estimate at each publication; a forecast when one is due (`forecast_command`: what the
+  /// drives will be asked, a held rate or a trajectory). `stamp_of` maps twin time to stamps.
+  void publish(const Simulation& sim, const ros::Time& stamp,
+               const PayloadForecaster::CommandSource& forecast_command,
+               const std::function<ros::Time(double)>& stamp_of);
+  /// Key values and a level for the node's diagnostics.
+  void diagnose(const Simulation& sim, diagnostic_msgs::DiagnosticStatus& d) const;
+  /// The measured-joint follower's rates as a held command (the forecast in measured mode).
+  CommandEntry measuredRates(double t) const;
+
+ private:
+  void onJoints(const sensor_msgs::JointState::ConstPtr& m);
+  void onPayload(const geometry_msgs::PointStamped::ConstPtr& m);
+  void onTension(const std_msgs::Float64::ConstPtr& m);
+  void warn(const std::string& what);
+
+  ros::NodeHandle nh_;
+  TwinSettings settings_;
+  CraneFrames frames_;
+  Eigen::Vector3d base_position_;
+  double base_yaw_ = 0.0;
+  const CraneDescription* crane_ = nullptr;  ///< of the current model (none: crane: none)
+  double end_mass_ = 0.0, hook_mass_ = 0.0, gravity_ = 9.81;
+  MeasuredJointFollower follower_;
+  std::vector<int> modes_;  ///< structure modes in the estimator
+  std::unique_ptr<SwayEstimator> estimator_;
+  Eigen::Matrix2d payload_covariance_ = Eigen::Matrix2d::Zero();
+  std::unique_ptr<PayloadForecaster> forecaster_;
+  std::string forecast_error_;
+
+  std::deque<sensor_msgs::JointState> joints_in_;
+  std::deque<std::pair<ros::Time, Eigen::Vector3d>> payload_in_;  ///< stamp, base frame
+  std::deque<double> tension_in_;
+  ros::Subscriber joint_sub_, payload_sub_, tension_sub_;
+  ros::Publisher estimate_pub_, forecast_pub_;
+
+  double last_payload_t_ = -1e300;   ///< twin time of the last payload measurement
+  SwayUpdate last_update_;
+  long payload_updates_ = 0, payload_refused_ = 0, correction_failures_ = 0;
+  std::string correction_error_;
+  double tension_ratio_ = 1.0;       ///< filtered measured / twin top tension
+  bool tension_seen_ = false;
+  ros::WallTime last_forecast_wall_, last_warn_wall_;
+  PayloadForecast last_forecast_;
+  /// The forecast running on its own thread (the node's steps go on meanwhile).
+  std::future<PayloadForecast> forecast_job_;
+  void collectForecast(const std::function<ros::Time(double)>& stamp_of);
+  double now_t_ = 0.0;
+};
+
+}  // namespace crane_twin
