@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """rostest (twin.test, docs/twin.md): the twin follows a simulated real crane.
 
-The real crane gets one held command (slew 0.03 rad/s, trolley in at 0.3 m/s). Checked:
+The real crane gets one held command (slew 0.03 rad/s, trolley in at 0.3 m/s) as soon as both
+run. Checked, with times counted from the twin's start:
 - the twin's joints follow the real crane's (trolley within 5 cm, slew within 2 mrad);
 - 30 s after the start its payload estimate is within 0.2 m of the real payload and stays so;
 - each 30 s forecast made after that lands, 10 s ahead, within 0.3 m of where the real
@@ -35,6 +36,7 @@ class Recorder:
         self.lock = threading.Lock()
         self.truth = []      # (stamp, x, y, z, trolley_radius, slew)
         self.twin = []       # (stamp, trolley_radius, slew)
+        self.twin_origin = None  # stamp of the twin's t = 0
         self.estimates = []  # (stamp, x, y, z, sigma)
         self.forecasts = []  # (stamp, [(stamp, x, y, z)])
         self.diag = {}
@@ -52,6 +54,8 @@ class Recorder:
 
     def on_twin(self, m):
         with self.lock:
+            if self.twin_origin is None:
+                self.twin_origin = m.header.stamp.to_sec() - m.t
             self.twin.append((m.header.stamp.to_sec(), m.trolley_radius, m.slew_angle))
 
     def on_estimate(self, m):
@@ -107,8 +111,10 @@ class TwinFollowsCrane(unittest.TestCase):
         c.slew_rate = 0.03
         c.trolley_speed = -0.3
         cmd.publish(c)
+        while time.time() < deadline and rec.twin_origin is None:
+            time.sleep(0.1)
         with rec.lock:
-            t_start = rec.estimates[-1][0]
+            t_start = rec.twin_origin  # times below count from the twin's start
         while time.time() < deadline + 120.0:
             with rec.lock:
                 if rec.truth and rec.truth[-1][0] > t_start + CHECK_UNTIL_S + FORECAST_AHEAD_S:
