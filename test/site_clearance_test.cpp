@@ -113,6 +113,41 @@ TEST(SiteClearance, FacingJibsAtDifferentHeightsAreTheirSpacingLessTheLatticeRad
               100.0 - (c.mast_width / 2 + c.jib.length) - r - c.mast_width / std::sqrt(2.0), 1e-9);
 }
 
+TEST(SiteClearance, ForecastClearanceIsTheClosestApproachAlongBothPaths) {
+  // Crane b as above (100 m along x, facing a, 10 m higher) holds its load at 10 m; crane a's
+  // forecast slews its load (radius 40 m, 20 m under the rail) from 90 deg to 0 deg in 3 s. The
+  // jibs are apart in plan until a's points at b: then 10 m in height less both lattice radii,
+  // at t = 3 s, jib against jib.
+  const CraneDescription c = loadCraneDescription(kCranes + "t8036.yaml");
+  const SitePose pose_a{V(0, 0, 0), 0.0}, pose_b{V(100, 0, 10), M_PI};
+  CraneClearanceState now_a, now_b;
+  now_b.trolley = V(10.0, 0.0, c.jibRailHeight());
+  now_b.payload = V(10.0, 0.0, c.jibRailHeight() - 20.0);
+  PayloadPath a, b;
+  for (int i = 0; i <= 3; ++i) {
+    const double az = M_PI / 2 * (1.0 - i / 3.0);
+    a.t.push_back(i);
+    a.payload.push_back(V(40.0 * std::cos(az), 40.0 * std::sin(az), c.jibRailHeight() - 20.0));
+    b.t.push_back(i + 0.1);
+    b.payload.push_back(pose_b.toSite(now_b.payload));
+  }
+  // The state a forecast payload implies: the jib turned to its azimuth, the trolley above it.
+  const CraneClearanceState s1 = stateFromForecastPayload(c, pose_a, now_a, a.payload[1]);
+  EXPECT_NEAR(s1.slew_angle, M_PI / 3, 1e-12);
+  EXPECT_LT((s1.trolley - V(20.0, 40.0 * std::sin(M_PI / 3), c.jibRailHeight())).norm(), 1e-9);
+  const CraneClearanceState sb = stateFromForecastPayload(c, pose_b, now_b, b.payload[0]);
+  EXPECT_NEAR(std::cos(sb.slew_angle), 1.0, 1e-12);  // b's own frame: its jib along its x
+  const double r = 0.5 * std::hypot(c.jib.width, c.jib.height);
+  const ForecastClearance f = forecastClearance(c, pose_a, now_a, a, c, pose_b, now_b, b, {}, 0.2);
+  ASSERT_TRUE(f.valid);
+  EXPECT_EQ(f.t, 3.0);
+  EXPECT_EQ(f.closest.part_a, "jib");
+  EXPECT_EQ(f.closest.part_b, "jib");
+  EXPECT_NEAR(f.closest.distance, 10.0 - 2.0 * r, 1e-9);
+  // Paths that share no instant within the gap: no forecast clearance.
+  EXPECT_FALSE(forecastClearance(c, pose_a, now_a, a, c, pose_b, now_b, b, {}, 0.05).valid);
+}
+
 TEST(SiteClearance, RejectsBadInput) {
   const CraneDescription c = loadCraneDescription(kCranes + "t8036.yaml");
   ClearanceSettings bad;

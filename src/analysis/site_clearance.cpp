@@ -62,4 +62,53 @@ PartClearance minimumClearance(const std::vector<CranePart>& a, const std::vecto
   return best;
 }
 
+CraneClearanceState stateFromForecastPayload(const CraneDescription& crane, const SitePose& pose,
+                                             const CraneClearanceState& now,
+                                             const Eigen::Vector3d& payload_site) {
+  // Into the crane's own frame: x = Rz(-yaw) (p - position).
+  const Eigen::Vector3d p =
+      Eigen::AngleAxisd(-pose.yaw, Eigen::Vector3d::UnitZ()) * (payload_site - pose.position);
+  CraneClearanceState s = now;
+  s.payload = p;
+  const double r = std::hypot(p.x(), p.y());
+  s.slew_angle = r > 0.0 ? std::atan2(p.y(), p.x()) : now.slew_angle;
+  s.trolley = Eigen::Vector3d(p.x(), p.y(), crane.jibRailHeight());
+  return s;
+}
+
+ForecastClearance forecastClearance(const CraneDescription& a, const SitePose& pose_a,
+                                    const CraneClearanceState& now_a, const PayloadPath& path_a,
+                                    const CraneDescription& b, const SitePose& pose_b,
+                                    const CraneClearanceState& now_b, const PayloadPath& path_b,
+                                    const ClearanceSettings& settings, double max_gap) {
+  if (path_a.t.size() != path_a.payload.size() || path_b.t.size() != path_b.payload.size()) {
+    throw std::invalid_argument("forecast clearance: a path's times and positions differ in number");
+  }
+  ForecastClearance out;
+  out.closest.distance = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < path_a.t.size(); ++i) {
+    std::size_t best = path_b.t.size();
+    double gap = max_gap;
+    for (std::size_t j = 0; j < path_b.t.size(); ++j) {
+      const double g = std::abs(path_b.t[j] - path_a.t[i]);
+      if (g <= gap) {
+        gap = g;
+        best = j;
+      }
+    }
+    if (best == path_b.t.size()) continue;
+    const PartClearance c = minimumClearance(
+        cranePartsOnSite(a, pose_a, stateFromForecastPayload(a, pose_a, now_a, path_a.payload[i]),
+                         settings),
+        cranePartsOnSite(b, pose_b, stateFromForecastPayload(b, pose_b, now_b, path_b.payload[best]),
+                         settings));
+    out.valid = true;
+    if (c.distance < out.closest.distance) {
+      out.closest = c;
+      out.t = path_a.t[i];
+    }
+  }
+  return out;
+}
+
 }  // namespace crane_twin

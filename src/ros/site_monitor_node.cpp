@@ -1,9 +1,12 @@
 // site_monitor: the clearance between the cranes of a site (docs/site.md). A thin adapter over
 // the core's SiteDescription and cranePartsOnSite / minimumClearance: it subscribes to each
-// crane's <name>/crane/state, and at the site's rate publishes one crane_twin/SiteClearance per
-// pair on site/clearance, the closest points as markers (site/clearance_markers) and one
-// diagnostic status per pair (WARN, ERROR under the site's distances).
+// crane's <name>/crane/state (and <name>/crane/forecast where the crane forecasts, docs/twin.md),
+// and at the site's rate publishes one crane_twin/SiteClearance per pair on site/clearance (the
+// clearance now and the closest approach along both forecasts), the closest points as markers
+// (site/clearance_markers) and one diagnostic status per pair (WARN, ERROR under the site's
+// distances, now or predicted).
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <nav_msgs/Path.h>
 #include <ros/ros.h>
 #include <visualization_msgs/MarkerArray.h>
 
@@ -27,7 +30,9 @@ struct MonitoredCrane {
   CraneDescription description;
   SitePose pose;
   std::optional<CraneState> state;
-  ros::Subscriber sub;
+  std::optional<PayloadPath> forecast;
+  double forecast_start = 0.0;  ///< stamp of the forecast's start [s]
+  ros::Subscriber sub, forecast_sub;
 };
 
 class SiteMonitor {
@@ -45,6 +50,17 @@ class SiteMonitor {
       MonitoredCrane* raw = m.get();
       m->sub = nh_.subscribe<CraneState>(c.name + "/crane/state", 10,
                                          [raw](const CraneState::ConstPtr& s) { raw->state = *s; });
+      m->forecast_sub = nh_.subscribe<nav_msgs::Path>(
+          c.name + "/crane/forecast", 2, [raw](const nav_msgs::Path::ConstPtr& p) {
+            if (p->header.frame_id != "world") return;  // the twin publishes the site frame
+            PayloadPath path;
+            for (const auto& ps : p->poses) {
+              path.t.push_back(ps.header.stamp.toSec());
+              path.payload.push_back(fromMsg(ps.pose.position));
+            }
+            raw->forecast = path;
+            raw->forecast_start = p->header.stamp.toSec();
+          });
       cranes_.push_back(std::move(m));
     }
     clearance_pub_ = nh_.advertise<SiteClearance>("site/clearance", 10);
@@ -57,16 +73,22 @@ class SiteMonitor {
   }
 
  private:
-  std::vector<CranePart> partsOf(const MonitoredCrane& c) const {
+  static CraneClearanceState clearanceState(const MonitoredCrane& c) {
     const CraneState& s = *c.state;
     CraneClearanceState k;
     k.slew_angle = s.slew_angle;
     k.jib_tip_displacement = fromMsg(s.jib_tip_displacement);
     k.trolley = fromMsg(s.trolley);
     k.payload = fromMsg(s.payload);
+    return k;
+  }
+  ClearanceSettings settings() const {
     ClearanceSettings settings;
     settings.payload_radius = site_.payload_radius;
-    return cranePartsOnSite(c.description, c.pose, k, settings);
+    return settings;
+  }
+  std::vector<CranePart> partsOf(const MonitoredCrane& c) const {
+    return cranePartsOnSite(c.description, c.pose, clearanceState(c), settings());
   }
 
   void update() {
@@ -103,6 +125,22 @@ class SiteMonitor {
         m.point_b = point(p.point_b);
         m.level = static_cast<uint8_t>(level);
         m.stamp_gap = std::abs(a.state->t - b.state->t);
+        ForecastClearance f;
+        if (a.forecast && b.forecast) {
+          // Samples of the two paths within half a second of each other count as one instant.
+          f = forecastClearance(a.description, a.pose, clearanceState(a), *a.forecast,
+                                b.description, b.pose, clearanceState(b), *b.forecast,
+                                settings(), 0.5);
+        }
+        m.forecast_valid = f.valid;
+        if (f.valid) {
+          m.forecast_min_distance = f.closest.distance;
+          m.forecast_time_ahead = f.t - std::min(a.forecast_start, b.forecast_start);
+          m.forecast_part_a = f.closest.part_a;
+          m.forecast_part_b = f.closest.part_b;
+          m.forecast_level = static_cast<uint8_t>(
+              clearanceLevel(f.closest.distance, site_.warn_distance, site_.error_distance));
+        }
         clearance_pub_.publish(m);
 
         char text[160];
@@ -113,6 +151,16 @@ class SiteMonitor {
                   : level == ClearanceLevel::kWarn ? diagnostic_msgs::DiagnosticStatus::WARN
                                                    : diagnostic_msgs::DiagnosticStatus::OK;
         d.message = text;
+        if (f.valid && m.forecast_level > m.level) {  // a predicted approach raises the level
+          char predicted[200];
+          std::snprintf(predicted, sizeof predicted,
+                        "; predicted %.2f m between %s's %s and %s's %s in %.0f s", f.closest.distance,
+                        a.site.name.c_str(), f.closest.part_a.c_str(), b.site.name.c_str(),
+                        f.closest.part_b.c_str(), m.forecast_time_ahead);
+          d.message += predicted;
+          d.level = m.forecast_level == 2 ? diagnostic_msgs::DiagnosticStatus::ERROR
+                                          : diagnostic_msgs::DiagnosticStatus::WARN;
+        }
         auto kv = [&](const std::string& k, double v) {
           diagnostic_msgs::KeyValue x;
           x.key = k;
@@ -123,6 +171,10 @@ class SiteMonitor {
         kv("warn_distance_m", site_.warn_distance);
         kv("error_distance_m", site_.error_distance);
         kv("stamp_gap_s", m.stamp_gap);
+        if (f.valid) {
+          kv("forecast_min_distance_m", f.closest.distance);
+          kv("forecast_min_in_s", m.forecast_time_ahead);
+        }
         diag.status.push_back(d);
 
         visualization_msgs::Marker line;

@@ -22,6 +22,8 @@ namespace {
 std::mutex mtx;
 crane_twin::SiteClearance last_clearance;
 int clearance_count = 0;
+int forecast_count = 0;
+long first_forecast_warn = -1, first_warn = -1;  // message counts at the first (predicted) warning
 double least_distance = 1e300;
 int warn_diagnostics = 0;
 crane_twin::CraneState state_b;
@@ -94,6 +96,10 @@ TEST(Site, MonitorWarnsWhenAJibSlewsOverTheOther) {
   const double dy = last_clearance.point_a.y - last_clearance.point_b.y;
   const double dz = last_clearance.point_a.z - last_clearance.point_b.z;
   EXPECT_NEAR(std::sqrt(dx * dx + dy * dy + dz * dz), std::abs(last_clearance.min_distance), 1e-6);
+  // The cranes' forecasts (docs/twin.md) saw it coming: a predicted warning before the warning.
+  EXPECT_GT(forecast_count, 0);
+  EXPECT_GE(first_forecast_warn, 0) << "no forecast predicted the approach";
+  EXPECT_LT(first_forecast_warn, first_warn);
 }
 
 int main(int argc, char** argv) {
@@ -106,6 +112,10 @@ int main(int argc, char** argv) {
       nh, "site/clearance", 100, [](const crane_twin::SiteClearance::ConstPtr& m) {
         std::lock_guard<std::mutex> l(mtx);
         last_clearance = *m;
+        if (m->forecast_valid) ++forecast_count;
+        if (m->forecast_valid && m->forecast_level >= 1 && first_forecast_warn < 0)
+          first_forecast_warn = clearance_count;
+        if (m->level >= 1 && first_warn < 0) first_warn = clearance_count;
         ++clearance_count;
         least_distance = std::min(least_distance, m->min_distance);
       });

@@ -64,4 +64,34 @@ ClearanceLevel clearanceLevel(double distance, double warn_distance, double erro
 /// other (on the axes where the axes touch). Throws std::invalid_argument for an empty list.
 PartClearance minimumClearance(const std::vector<CranePart>& a, const std::vector<CranePart>& b);
 
+/// A crane's predicted payload path (docs/twin.md "Forecast"): times [s, the stamps' clock]
+/// and payload positions in the site frame.
+struct PayloadPath {
+  std::vector<double> t;
+  std::vector<Eigen::Vector3d> payload;
+};
+
+/// The crane's state a forecast payload position implies: the jib turned to the payload's
+/// azimuth about the mast and the trolley at its horizontal distance (the swing, a few metres
+/// at 20-80 m, turns the jib by a few degrees at most), the rope's top on the rail, the jib-tip
+/// displacement as now. `payload_site` in the site frame.
+CraneClearanceState stateFromForecastPayload(const CraneDescription& crane, const SitePose& pose,
+                                             const CraneClearanceState& now,
+                                             const Eigen::Vector3d& payload_site);
+
+struct ForecastClearance {
+  bool valid = false;  ///< the two paths share no instant (within max_gap)
+  PartClearance closest;
+  double t = 0.0;      ///< when (a's path time) [s]
+};
+
+/// The smallest clearance over two cranes' forecasts: at each instant of a's path with a
+/// sample of b's within max_gap [s], both cranes' parts from their forecast payloads
+/// (stateFromForecastPayload) against each other.
+ForecastClearance forecastClearance(const CraneDescription& a, const SitePose& pose_a,
+                                    const CraneClearanceState& now_a, const PayloadPath& path_a,
+                                    const CraneDescription& b, const SitePose& pose_b,
+                                    const CraneClearanceState& now_b, const PayloadPath& path_b,
+                                    const ClearanceSettings& settings, double max_gap);
+
 }  // namespace crane_twin
