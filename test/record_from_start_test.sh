@@ -2,7 +2,8 @@
 # sim.launch with record:=true as fast as possible (docs/ros.md): the bag starts at t = 0 (the
 # node holds its first step until the recorder listens) and holds the rope markers by default;
 # roslaunch ends with the node at the scene's end, exit status 0 and no "REQUIRED process has
-# died" (the node stops the launch as Ctrl-C would), and /use_sim_time is left false. Runs its own master on
+# died" (the node stops the launch as Ctrl-C would), and /use_sim_time is left false; a pendulum
+# rope (no forecast) runs too. Runs its own master on
 # a free port. Run in the workspace's environment (ctest: devel/env.sh).
 set -uo pipefail
 export PYENV_VERSION=system
@@ -38,4 +39,10 @@ assert len(ts) >= 0.9 * 5 * 30, "states missing (30 Hz of simulated time)"
 assert ropes >= 0.9 * 5 * 30, "rope markers missing"
 PY
 [ "$(rosparam get /use_sim_time 2>/dev/null)" = "false" ] || fail "/use_sim_time left $(rosparam get /use_sim_time)"
+# A rope model the twin's forecast cannot continue (the pendulum) still runs to its end, saying so.
+timeout 120 roslaunch crane_twin sim.launch rviz:=false real_time_factor:=0 duration:=2 \
+  shutdown_at_end:=true overrides:="[rope.model=pendulum]" >"$T/pendulum.log" 2>&1 ||
+  fail "pendulum run: $(tail -20 "$T/pendulum.log")"
+grep -q "no forecast" "$T/pendulum.log" || fail "the pendulum run did not say why it has no forecast"
+grep -q "end of scene at t = 2" "$T/pendulum.log" || fail "the pendulum run did not reach its end"
 echo "record_from_start_test: passed"

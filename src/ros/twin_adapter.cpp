@@ -88,7 +88,12 @@ void TwinAdapter::restart(const CraneModel& model, const Simulation& sim) {
   forecaster_.reset();
   forecast_error_.clear();
   if (settings_.forecast_rate > 0.0) {
-    forecaster_ = std::make_unique<PayloadForecaster>(model, settings_.forecast_time_step);
+    try {
+      forecaster_ = std::make_unique<PayloadForecaster>(model, settings_.forecast_time_step);
+    } catch (const InputError& e) {  // a rope model that cannot continue another run's state
+      forecast_error_ = std::string("no forecast: ") + e.what();
+      ROS_WARN("crane_sim_node (twin): %s", forecast_error_.c_str());
+    }
   }
   if (settings_.measured_input && !crane_) {
     throw InputError("parameter '~input' 'measured' needs a scene with a crane");
@@ -347,6 +352,7 @@ void TwinAdapter::diagnose(const Simulation& sim, diagnostic_msgs::DiagnosticSta
       warn_level("measured tension differs from the twin's by more than 5 % (~set_payload?)");
     }
   }
+  if (!forecaster_ && !forecast_error_.empty()) kv("forecast_error", forecast_error_);
   if (forecaster_) {
     num("forecast_horizon_s", settings_.forecast_horizon);
     num("forecast_cost_s", last_forecast_.wall_seconds);
