@@ -21,12 +21,9 @@ for link in "$PKG"/* "$PKG"/.ci; do  # entries removed from the repository
   [ -L "$link" ] && [ ! -e "$link" ] && rm "$link"
 done
 # catkin caches the environment the test runners get (build/catkin_generated/setup_cached.sh)
-# from the environment it is configured in: on a fresh clone the devel space's python folder is
-# not on PYTHONPATH yet, and python rostest nodes could not import crane_twin.msg.
+# as what sourcing the devel space's setup adds, and that setup adds the python folder only if it
+# exists when catkin configures: on a fresh clone it did not, and python rostest nodes could not
+# import crane_twin.msg.
 mkdir -p "$WS/devel/lib/python3/dist-packages"
-case ":${PYTHONPATH:-}:" in
-  *":$WS/devel/lib/python3/dist-packages:"*) ;;
-  *) export PYTHONPATH="$WS/devel/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}" ;;
-esac
 cd "$WS"
 catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=Release -j"$(nproc)" "$@"
