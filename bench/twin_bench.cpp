@@ -44,8 +44,9 @@ static void BM_EstimatorUpdateAndCorrection(benchmark::State& state) {
   SwayEstimator e(SwayEstimatorSettings{}, modeMotionNorms(*twin, modes));
   for (auto _ : state) {
     e.predict(0.2);
-    const SwayUpdate u = e.update(twin->series().payload.head<2>() + Eigen::Vector2d(0.01, 0.0),
-                                  twin->series().payload.head<2>(), swayModelAt(*twin, modes, 9.81));
+    const SeriesValues row = twin->series();
+    const SwayUpdate u = e.update(row.payload.head<2>() + Eigen::Vector2d(0.01, 0.0),
+                                  row.payload.head<2>(), swayModelAt(*twin, row, modes, 9.81));
     applyTwinCorrection(*twin, u, modes);
   }
 }

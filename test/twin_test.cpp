@@ -119,7 +119,10 @@ TEST(SwayCorrection, MovesTheEndByDpAndGivesItDvRigidly) {
   // Into the reduced run: the basis carries the rotation, so the payload lands where the
   // rotated rope puts it.
   const Eigen::Vector3d p0 = sim.series().payload;
-  applySwayCorrection(sim, dp, dv);
+  SwayUpdate u;  // the swing only: no structure modes
+  u.position_correction = dp.head<2>();
+  u.velocity_correction = dv.head<2>();
+  applyTwinCorrection(sim, u, {});
   EXPECT_LT((sim.series().payload - f.q.segment<3>(last)).norm(), 1e-6);
   EXPECT_LT((sim.series().payload_velocity - f.v.segment<3>(last)).norm(), 1e-6)
       << sim.series().payload_velocity.transpose() << " vs " << f.v.segment<3>(last).transpose();
@@ -312,8 +315,8 @@ TEST(Twin, LocksOntoARealCranesSwayAndForecastsIt) {
     truth.emplace_back(t, p_real);
     if (k % 40 == 0) {  // 5 Hz payload measurements
       const Eigen::Vector2d z = p_real.head<2>() + 0.05 * Eigen::Vector2d(unit(rng), unit(rng));
-      const SwayUpdate u =
-          estimator.update(z, twin->series().payload.head<2>(), swayModelAt(*twin, modes, 9.81));
+      const SeriesValues row = twin->series();
+      const SwayUpdate u = estimator.update(z, row.payload.head<2>(), swayModelAt(*twin, row, modes, 9.81));
       if (t > 30.0) {
         nis += u.normalized;
         ++nis_n;
@@ -357,7 +360,7 @@ TEST(SwayCorrection, AZeroCorrectionLeavesTheRunAsItWas) {
   for (int k = 1; k <= 2000; ++k) {
     a->step();
     b->step();
-    if (k % 40 == 0) applySwayCorrection(*b, Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+    if (k % 40 == 0) applyTwinCorrection(*b, SwayUpdate{}, {});
     worst = std::max(worst, (a->series().payload - b->series().payload).norm());
   }
   std::printf("zero correction: worst payload difference %.3g m\n", worst);
@@ -373,7 +376,7 @@ TEST(TwinCorrection, MovesTheStructureModesAndTheRopeWithThem) {
   for (int k = 0; k < 100; ++k) sim.step();
   const std::vector<int> modes = swayCouplingModes(sim);
   ASSERT_GE(modes.size(), 1u);
-  const SwayModel model = swayModelAt(sim, modes, 9.81);
+  const SwayModel model = swayModelAt(sim, sim.series(), modes, 9.81);
   SwayUpdate u;
   u.structure_correction = Eigen::VectorXd::Zero(modes.size());
   u.structure_rate_correction = Eigen::VectorXd::Zero(modes.size());

@@ -40,7 +40,7 @@ LoadShapes loadShapes(const CraneSnapshot& s, double hook_block_mass, double pay
   out.payload.size = Eigen::Vector3d::Constant(e);
   FramePose top = s.payload;
   if ((s.payload.position - s.hook.position).norm() < 1e-9) {
-    top.position = s.hook.position - s.hook.orientation * Eigen::Vector3d(0.0, 0.0, 1.2 * a);
+    top.position = s.hook.position - s.hook.orientation * Eigen::Vector3d(0.0, 0.0, out.hook_block.size.z());
   }
   out.payload.pose = hangingBelow(top, e);
   return out;

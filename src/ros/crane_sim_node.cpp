@@ -588,30 +588,19 @@ void CraneSimNode::publishDiagnostics() {
     d.level = diagnostic_msgs::DiagnosticStatus::OK;
     d.message = paused_ ? "paused" : finished_ ? "end of scene reached" : "running";
   }
-  auto kv = [&d](const std::string& k, const std::string& v) {
-    diagnostic_msgs::KeyValue x;
-    x.key = k;
-    x.value = v;
-    d.values.push_back(x);
-  };
-  auto num = [&kv](const std::string& k, double v) {
-    std::ostringstream s;
-    s << v;
-    kv(k, s.str());
-  };
-  num("sim_time_s", sim_->time());
-  num("real_time_factor", last_rtf_);
-  num("requested_real_time_factor", settings_.real_time_factor);
-  num("step_cost_s", last_step_cost_);
-  num("steps", static_cast<double>(steps_));
-  num("subdomains", sim_->subdomains());
-  num("hand_overs", static_cast<double>(sim_->handOvers()));
-  num("full_order_steps", static_cast<double>(sim_->fullOrderSteps()));
-  num("mode_updates_s", sim_->modeUpdateSeconds());
-  num("rejected_commands", static_cast<double>(rejected_));
-  num("pacing_overruns", static_cast<double>(overruns_));
-  num("warnings_seen", warnings_seen_);
-  kv("rope_model", model_.scene.rope.model);
+  addNumber(d, "sim_time_s", sim_->time());
+  addNumber(d, "real_time_factor", last_rtf_);
+  addNumber(d, "requested_real_time_factor", settings_.real_time_factor);
+  addNumber(d, "step_cost_s", last_step_cost_);
+  addNumber(d, "steps", static_cast<double>(steps_));
+  addNumber(d, "subdomains", sim_->subdomains());
+  addNumber(d, "hand_overs", static_cast<double>(sim_->handOvers()));
+  addNumber(d, "full_order_steps", static_cast<double>(sim_->fullOrderSteps()));
+  addNumber(d, "mode_updates_s", sim_->modeUpdateSeconds());
+  addNumber(d, "rejected_commands", static_cast<double>(rejected_));
+  addNumber(d, "pacing_overruns", static_cast<double>(overruns_));
+  addNumber(d, "warnings_seen", warnings_seen_);
+  addKeyValue(d, "rope_model", model_.scene.rope.model);
   twin_->diagnose(*sim_, d);
   a.status.push_back(d);
   diag_pub_.publish(a);

@@ -1,6 +1,7 @@
 #include "ros_messages.hpp"
 
 #include <cstdio>
+#include <sstream>
 
 namespace crane_twin {
 
@@ -68,6 +69,19 @@ geometry_msgs::Pose pose(const FramePose& p) {
 }
 
 }  // namespace
+
+void addKeyValue(diagnostic_msgs::DiagnosticStatus& d, const std::string& key, const std::string& value) {
+  diagnostic_msgs::KeyValue x;
+  x.key = key;
+  x.value = value;
+  d.values.push_back(x);
+}
+
+void addNumber(diagnostic_msgs::DiagnosticStatus& d, const std::string& key, double value) {
+  std::ostringstream s;
+  s << value;
+  addKeyValue(d, key, s.str());
+}
 
 sensor_msgs::JointState toJointState(const CraneSnapshot& s, const ros::Time& stamp) {
   sensor_msgs::JointState j;

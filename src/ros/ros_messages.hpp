@@ -1,6 +1,7 @@
 // CraneSnapshot -> ROS messages (docs/ros.md). Pure conversions: no publishing, no state.
 #pragma once
 
+#include <diagnostic_msgs/DiagnosticStatus.h>
 #include <geometry_msgs/TransformStamped.h>
 #include <sensor_msgs/JointState.h>
 #include <visualization_msgs/MarkerArray.h>
@@ -18,6 +19,10 @@ namespace crane_twin {
 geometry_msgs::Point point(const Eigen::Vector3d& p);
 Eigen::Vector3d fromMsg(const geometry_msgs::Point& p);
 Eigen::Vector3d fromMsg(const geometry_msgs::Vector3& v);
+
+/// A key-value pair of a diagnostic status; numbers as std::ostream writes them.
+void addKeyValue(diagnostic_msgs::DiagnosticStatus& d, const std::string& key, const std::string& value);
+void addNumber(diagnostic_msgs::DiagnosticStatus& d, const std::string& key, double value);
 
 /// Joint names the node publishes and the URDF declares.
 extern const char* const kJointNames[3];  // slew, trolley, hoist

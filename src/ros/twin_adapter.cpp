@@ -158,10 +158,10 @@ CommandEntry TwinAdapter::measuredRates(double t) const {
 
 void TwinAdapter::afterStep(Simulation& sim, double h,
                             const std::function<double(const ros::Time&)>& time_of) {
-  now_t_ = sim.time();
+  const double now = sim.time();
   // A stamp in the twin's future (clocks apart) counts as now; none: on arrival.
   auto when = [&](const ros::Time& stamp) {
-    return stamp.isZero() ? now_t_ : std::min(time_of(stamp), now_t_);
+    return stamp.isZero() ? now : std::min(time_of(stamp), now);
   };
   // Joint samples, stamped with the twin's time of arrival (docs/twin.md).
   while (!joints_in_.empty()) {
@@ -194,16 +194,17 @@ void TwinAdapter::afterStep(Simulation& sim, double h,
   }
   estimator_->predict(h);  // the error's covariance follows at the next update
   while (!payload_in_.empty()) {
-    const double age = std::min(now_t_ - when(payload_in_.front().first), 1.0);
+    const double age = std::min(now - when(payload_in_.front().first), 1.0);
     const Eigen::Vector3d z = payload_in_.front().second;
     payload_in_.pop_front();
     // The twin's payload when the measurement was taken, p(t - age) = p - v age.
     const SeriesValues v = sim.series();
     const Eigen::Vector3d p = v.payload - age * v.payload_velocity;
-    const SwayUpdate u = estimator_->update(z.head<2>(), p.head<2>(), swayModelAt(sim, modes_, gravity_));
+    const SwayUpdate u =
+        estimator_->update(z.head<2>(), p.head<2>(), swayModelAt(sim, v, modes_, gravity_));
     if (u.reacquired) warn("sway estimator re-acquiring: 10 payload measurements refused in a row");
     last_update_ = u;
-    last_payload_t_ = now_t_;
+    last_payload_t_ = now;
     if (!u.accepted) {
       ++payload_refused_;
       warn("payload measurement beyond the innovation gate refused (" +
@@ -215,7 +216,6 @@ void TwinAdapter::afterStep(Simulation& sim, double h,
       applyTwinCorrection(sim, u, modes_);
     } catch (const std::exception& e) {
       ++correction_failures_;
-      correction_error_ = e.what();
       warn(std::string("sway correction not applied: ") + e.what());
     }
   }
@@ -234,27 +234,20 @@ void TwinAdapter::afterStep(Simulation& sim, double h,
 void TwinAdapter::publish(const Simulation& sim, const ros::Time& stamp,
                           const PayloadForecaster::CommandSource& forecast_command,
                           const std::function<ros::Time(double)>& stamp_of) {
-  Eigen::Vector3d p, cab, tip;
-  sim.sample(p, cab, tip);
+  const SeriesValues row = sim.series();
   geometry_msgs::PoseWithCovarianceStamped e;
   e.header.stamp = stamp;
   e.header.frame_id = frames_.base();
-  e.pose.pose.position = point(p);
+  e.pose.pose.position = point(row.payload);
   e.pose.pose.orientation.w = 1.0;
   // The payload's horizontal covariance H P H^T (the filter's, propagated to now); row-major
   // 6 x 6 (x, y, z, rot x, rot y, rot z): the vertical position is not estimated (the
   // measurement noise stands in), nor the rotation.
-  const SwayModel model = swayModelAt(sim, modes_, gravity_);
-  const Eigen::MatrixXd& P = estimator_->covariance(model);
-  const int K = static_cast<int>(modes_.size());
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2, P.rows());
-  H.leftCols(K) = model.phi;
-  H(0, 2 * K) = H(1, 2 * K + 1) = 1.0;
-  payload_covariance_ = H * P * H.transpose();
-  e.pose.covariance[0] = payload_covariance_(0, 0);
-  e.pose.covariance[1] = payload_covariance_(0, 1);
-  e.pose.covariance[6] = payload_covariance_(1, 0);
-  e.pose.covariance[7] = payload_covariance_(1, 1);
+  const Eigen::Matrix2d C = estimator_->payloadCovariance(swayModelAt(sim, row, modes_, gravity_));
+  e.pose.covariance[0] = C(0, 0);
+  e.pose.covariance[1] = C(0, 1);
+  e.pose.covariance[6] = C(1, 0);
+  e.pose.covariance[7] = C(1, 1);
   e.pose.covariance[14] = std::pow(settings_.estimator.measurement_noise, 2);
   e.pose.covariance[21] = e.pose.covariance[28] = e.pose.covariance[35] = 1e6;
   estimate_pub_.publish(e);
@@ -307,17 +300,6 @@ void TwinAdapter::collectForecast(const std::function<ros::Time(double)>& stamp_
 }
 
 void TwinAdapter::diagnose(const Simulation& sim, diagnostic_msgs::DiagnosticStatus& d) const {
-  auto kv = [&d](const std::string& k, const std::string& v) {
-    diagnostic_msgs::KeyValue x;
-    x.key = k;
-    x.value = v;
-    d.values.push_back(x);
-  };
-  auto num = [&kv](const std::string& k, double v) {
-    std::ostringstream s;
-    s << v;
-    kv(k, s.str());
-  };
   auto warn_level = [&d](const std::string& why) {
     if (d.level < diagnostic_msgs::DiagnosticStatus::WARN) {
       d.level = diagnostic_msgs::DiagnosticStatus::WARN;
@@ -327,39 +309,38 @@ void TwinAdapter::diagnose(const Simulation& sim, diagnostic_msgs::DiagnosticSta
     }
   };
   const double t = sim.time();
-  kv("input", settings_.measured_input ? "measured" : "commands");
+  addKeyValue(d, "input", settings_.measured_input ? "measured" : "commands");
   if (settings_.measured_input) {
-    num("joint_input_age_s", follower_.age(t));
-    kv("joint_input", !follower_.hasSample() ? "none yet" : follower_.stale(t) ? "stale" : "fresh");
-    num("joint_samples_refused", static_cast<double>(follower_.refused()));
+    addNumber(d, "joint_input_age_s", follower_.age(t));
+    addKeyValue(d, "joint_input", !follower_.hasSample() ? "none yet" : follower_.stale(t) ? "stale" : "fresh");
+    addNumber(d, "joint_samples_refused", static_cast<double>(follower_.refused()));
     if (follower_.stale(t)) warn_level("measured joint input stale or missing");
   }
   const bool closed = t - last_payload_t_ <= settings_.payload_timeout;
-  kv("sway_estimator", closed ? "closed loop (payload measurements)"
+  addKeyValue(d, "sway_estimator", closed ? "closed loop (payload measurements)"
                               : "open loop (no payload measurement)");
-  num("sway_uncertainty_m", estimator_->positionSigma());
-  num("structure_modes_estimated", static_cast<double>(modes_.size()));
-  num("innovation_m", last_update_.innovation.norm());
-  num("normalized_innovation", last_update_.normalized);
-  num("payload_updates", static_cast<double>(payload_updates_));
-  num("payload_measurements_refused", static_cast<double>(payload_refused_));
-  num("sway_corrections_failed", static_cast<double>(correction_failures_));
+  addNumber(d, "sway_uncertainty_m", estimator_->positionSigma());
+  addNumber(d, "structure_modes_estimated", static_cast<double>(modes_.size()));
+  addNumber(d, "innovation_m", last_update_.innovation.norm());
+  addNumber(d, "normalized_innovation", last_update_.normalized);
+  addNumber(d, "payload_updates", static_cast<double>(payload_updates_));
+  addNumber(d, "payload_measurements_refused", static_cast<double>(payload_refused_));
+  addNumber(d, "sway_corrections_failed", static_cast<double>(correction_failures_));
   if (tension_seen_) {
-    num("tension_ratio_measured_to_twin", tension_ratio_);
+    addNumber(d, "tension_ratio_measured_to_twin", tension_ratio_);
     // The hanging mass the measured tension implies, less the hook block.
-    num("payload_mass_estimate_kg", tension_ratio_ * end_mass_ - hook_mass_);
+    addNumber(d, "payload_mass_estimate_kg", tension_ratio_ * end_mass_ - hook_mass_);
     if (std::abs(tension_ratio_ - 1.0) > 0.05) {
       warn_level("measured tension differs from the twin's by more than 5 % (~set_payload?)");
     }
   }
-  if (!forecaster_ && !forecast_error_.empty()) kv("forecast_error", forecast_error_);
+  if (!forecast_error_.empty()) addKeyValue(d, "forecast_error", forecast_error_);
   if (forecaster_) {
-    num("forecast_horizon_s", settings_.forecast_horizon);
-    num("forecast_cost_s", last_forecast_.wall_seconds);
-    num("forecast_cost_fraction", last_forecast_.wall_seconds / settings_.forecast_horizon);
-    num("forecast_max_swing_m", last_forecast_.max_swing);
-    num("forecast_max_swing_at_s", last_forecast_.max_swing_time);
-    if (!forecast_error_.empty()) kv("forecast_error", forecast_error_);
+    addNumber(d, "forecast_horizon_s", settings_.forecast_horizon);
+    addNumber(d, "forecast_cost_s", last_forecast_.wall_seconds);
+    addNumber(d, "forecast_cost_fraction", last_forecast_.wall_seconds / settings_.forecast_horizon);
+    addNumber(d, "forecast_max_swing_m", last_forecast_.max_swing);
+    addNumber(d, "forecast_max_swing_at_s", last_forecast_.max_swing_time);
   }
 }
 

@@ -85,7 +85,6 @@ class TwinAdapter {
   MeasuredJointFollower follower_;
   std::vector<int> modes_;  ///< structure modes in the estimator
   std::unique_ptr<SwayEstimator> estimator_;
-  Eigen::Matrix2d payload_covariance_ = Eigen::Matrix2d::Zero();
   std::unique_ptr<PayloadForecaster> forecaster_;
   std::string forecast_error_;
 
@@ -98,7 +97,6 @@ class TwinAdapter {
   double last_payload_t_ = -1e300;   ///< twin time of the last payload measurement
   SwayUpdate last_update_;
   long payload_updates_ = 0, payload_refused_ = 0, correction_failures_ = 0;
-  std::string correction_error_;
   double tension_ratio_ = 1.0;       ///< filtered measured / twin top tension
   bool tension_seen_ = false;
   ros::WallTime last_forecast_wall_, last_warn_wall_;
@@ -106,7 +104,6 @@ class TwinAdapter {
   /// The forecast running on its own thread (the node's steps go on meanwhile).
   std::future<PayloadForecast> forecast_job_;
   void collectForecast(const std::function<ros::Time(double)>& stamp_of);
-  double now_t_ = 0.0;
 };
 
 }  // namespace crane_twin

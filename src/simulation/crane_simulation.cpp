@@ -85,13 +85,7 @@ void CraneSimulation::continueFrom(const Simulation& other) {
 }
 
 void CraneSimulation::setMotion(const CoupledState& m) {
-  if (m.q.size() != state_.q.size() || m.v.size() != state_.v.size() ||
-      m.z.size() != state_.z.size() || m.zd.size() != state_.zd.size()) {
-    throw std::invalid_argument("setMotion: " + std::to_string(m.q.size()) + " rope and " +
-                                std::to_string(m.z.size()) + " support coordinates, the model has " +
-                                std::to_string(state_.q.size()) + " and " +
-                                std::to_string(state_.z.size()));
-  }
+  checkMotionSizes(m, state_);
   CoupledState s = state_;
   s.q = m.q;
   s.v = m.v;

@@ -84,12 +84,7 @@ void InvariantReducedSimulation::setMotion(const CoupledState& m) {
   syncFullRope();
   solver_->refreshLength();  // the rope's length as the full model rounds it (tryHandBack)
   CoupledState f = solver_->expand(state_);
-  if (m.q.size() != f.q.size() || m.v.size() != f.v.size() || m.z.size() != f.z.size() ||
-      m.zd.size() != f.zd.size()) {
-    throw std::invalid_argument("setMotion: " + std::to_string(m.q.size()) + " rope and " +
-                                std::to_string(m.z.size()) + " support coordinates, the model has " +
-                                std::to_string(f.q.size()) + " and " + std::to_string(f.z.size()));
-  }
+  checkMotionSizes(m, f);
   f.q = m.q;
   f.v = m.v;
   f.z = m.z;

@@ -50,6 +50,16 @@ void Simulation::setMotion(const CoupledState&) {
                    "full or reduced (rope.reduction: invariant)");
 }
 
+void Simulation::checkMotionSizes(const CoupledState& m, const CoupledState& like) {
+  if (m.q.size() != like.q.size() || m.v.size() != like.v.size() || m.z.size() != like.z.size() ||
+      m.zd.size() != like.zd.size()) {
+    throw std::invalid_argument("setMotion: " + std::to_string(m.q.size()) + " rope and " +
+                                std::to_string(m.z.size()) + " support coordinates, the model has " +
+                                std::to_string(like.q.size()) + " and " +
+                                std::to_string(like.z.size()));
+  }
+}
+
 void Simulation::writeNodeRows(std::ostream& out) const {
   const double t = time();
   for (int j = 0; j < ropeNodes(); ++j) {

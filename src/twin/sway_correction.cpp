@@ -39,12 +39,6 @@ void rotateRopeAboutTop(Eigen::VectorXd& q, Eigen::VectorXd& v, const Eigen::Vec
   }
 }
 
-void applySwayCorrection(Simulation& sim, const Eigen::Vector3d& dp, const Eigen::Vector3d& dv) {
-  CoupledState f = sim.fullState();
-  rotateRopeAboutTop(f.q, f.v, dp, dv);
-  sim.setMotion(f);
-}
-
 void applyTwinCorrection(Simulation& sim, const SwayUpdate& u, const std::vector<int>& modes) {
   CoupledState f = sim.fullState();
   if (!modes.empty()) {
@@ -77,14 +71,15 @@ void applyTwinCorrection(Simulation& sim, const SwayUpdate& u, const std::vector
 
 namespace {
 
-Eigen::Matrix2Xd modeMotions(const Simulation& sim, const std::vector<int>& modes) {
+// The support point's motion per unit modal coordinate (3 x K, world frame).
+Eigen::Matrix3Xd modeMotions(const Simulation& sim, const std::vector<int>& modes) {
   const RopeSupport& support = sim.support();
-  Eigen::Matrix2Xd phi(2, modes.size());
+  Eigen::Matrix3Xd phi(3, modes.size());
   Eigen::VectorXd e = Eigen::VectorXd::Zero(support.size());
   for (std::size_t k = 0; k < modes.size(); ++k) {
     e.setZero();
     e[modes[k]] = 1.0;
-    phi.col(k) = support.pointMotion(e).head<2>();
+    phi.col(k) = support.pointMotion(e);
   }
   return phi;
 }
@@ -99,28 +94,23 @@ std::vector<int> swayCouplingModes(const Simulation& sim, double max_hz, int max
   std::vector<int> low;
   for (int k = 0; k < w2.size(); ++k)
     if (w2[k] <= w2_max) low.push_back(k);
-  const Eigen::Matrix2Xd phi = modeMotions(sim, low);
-  Eigen::VectorXd e = Eigen::VectorXd::Zero(sim.support().size());
+  const Eigen::Matrix3Xd phi = modeMotions(sim, low);
   double largest = 0.0;
-  for (int k = 0; k < phi.cols(); ++k) largest = std::max(largest, phi.col(k).norm());
+  for (int k = 0; k < phi.cols(); ++k) largest = std::max(largest, phi.col(k).head<2>().norm());
   std::vector<int> out;
   for (int k = 0; k < phi.cols() && static_cast<int>(out.size()) < max_modes; ++k) {
-    e.setZero();
-    e[low[k]] = 1.0;
-    const double vertical = std::abs(sim.support().pointMotion(e).z());
+    const double sideways = phi.col(k).head<2>().norm(), vertical = std::abs(phi(2, k));
     // Mostly sideways at the trolley: a payload's horizontal position cannot tell a mode that
     // mostly lifts the trolley, and correcting one would move the load up and down.
-    if (largest > 0.0 && phi.col(k).norm() >= 0.05 * largest && phi.col(k).norm() >= vertical) {
-      out.push_back(low[k]);
-    }
+    if (largest > 0.0 && sideways >= 0.05 * largest && sideways >= vertical) out.push_back(low[k]);
   }
   return out;
 }
 
-SwayModel swayModelAt(const Simulation& sim, const std::vector<int>& modes, double gravity) {
+SwayModel swayModelAt(const Simulation& sim, const SeriesValues& v, const std::vector<int>& modes,
+                      double gravity) {
   SwayModel m;
   m.gravity = gravity;
-  const SeriesValues v = sim.series();
   m.length = std::max((v.payload - v.trolley).norm(), 1e-3);
   m.tension = v.rope_top_tension;
   m.omega2 = Eigen::VectorXd::Zero(modes.size());
@@ -133,15 +123,12 @@ SwayModel swayModelAt(const Simulation& sim, const std::vector<int>& modes, doub
       m.damping[k] = modal->dampingTerms()[modes[k]];
     }
   }
-  m.phi = modeMotions(sim, modes);
+  m.phi = modeMotions(sim, modes).topRows<2>();
   return m;
 }
 
 Eigen::VectorXd modeMotionNorms(const Simulation& sim, const std::vector<int>& modes) {
-  const Eigen::Matrix2Xd phi = modeMotions(sim, modes);
-  Eigen::VectorXd n(phi.cols());
-  for (int k = 0; k < phi.cols(); ++k) n[k] = phi.col(k).norm();
-  return n;
+  return modeMotions(sim, modes).topRows<2>().colwise().norm().transpose();
 }
 
 }  // namespace crane_twin

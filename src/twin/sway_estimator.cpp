@@ -111,6 +111,19 @@ const Eigen::MatrixXd& SwayEstimator::covariance(const SwayModel& model) {
   return P_;
 }
 
+Eigen::MatrixXd SwayEstimator::observation(const Eigen::Matrix2Xd& phi) const {
+  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2, 2 * K_ + 4);
+  H.leftCols(K_) = phi;
+  H(0, 2 * K_) = H(1, 2 * K_ + 1) = 1.0;
+  return H;
+}
+
+Eigen::Matrix2d SwayEstimator::payloadCovariance(const SwayModel& model) {
+  propagate(model);
+  const Eigen::MatrixXd H = observation(model.phi);
+  return H * P_ * H.transpose();
+}
+
 SwayUpdate SwayEstimator::update(const Eigen::Vector2d& measured, const Eigen::Vector2d& twin,
                                  const SwayModel& model) {
   SwayUpdate u;
@@ -124,9 +137,7 @@ SwayUpdate SwayEstimator::update(const Eigen::Vector2d& measured, const Eigen::V
   u.innovation = measured - twin;
   if (!u.innovation.allFinite()) return u;
   const int n = 2 * K_ + 4, S = 2 * K_;
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2, n);
-  H.leftCols(K_) = model.phi;
-  H(0, S) = H(1, S + 1) = 1.0;
+  const Eigen::MatrixXd H = observation(model.phi);
   const double r = settings_.measurement_noise * settings_.measurement_noise;
   const Eigen::Matrix2d Sm = H * P_ * H.transpose() + r * Eigen::Matrix2d::Identity();
   const Eigen::LLT<Eigen::Matrix2d> llt(Sm);
@@ -150,10 +161,7 @@ SwayUpdate SwayEstimator::update(const Eigen::Vector2d& measured, const Eigen::V
 }
 
 double SwayEstimator::positionSigma() const {
-  const int S = 2 * K_;
-  Eigen::MatrixXd H = Eigen::MatrixXd::Zero(2, 2 * K_ + 4);
-  H.leftCols(K_) = last_phi_;
-  H(0, S) = H(1, S + 1) = 1.0;
+  const Eigen::MatrixXd H = observation(last_phi_);
   const Eigen::Matrix2d C = H * P_ * H.transpose();
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> es(C);
   return std::sqrt(std::max(0.0, es.eigenvalues().maxCoeff()));

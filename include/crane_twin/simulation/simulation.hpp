@@ -97,6 +97,13 @@ class Simulation {
   /// again. The twin's correction (docs/twin.md). Throws InputError where the model does not
   /// support it, std::invalid_argument for wrong sizes.
   virtual void setMotion(const CoupledState& s);
+
+ protected:
+  /// setMotion's size check: std::invalid_argument unless m's q, v, z, zd have the sizes of the
+  /// model's full state `like`.
+  static void checkMotionSizes(const CoupledState& m, const CoupledState& like);
+
+ public:
   /// `t,node,x,y,z` rows for every rope node.
   void writeNodeRows(std::ostream& out) const;
 };

@@ -23,11 +23,9 @@ namespace crane_twin {
 void rotateRopeAboutTop(Eigen::VectorXd& q, Eigen::VectorXd& v, const Eigen::Vector3d& dp,
                         const Eigen::Vector3d& dv);
 
-/// Only the rope's swing (no structure modes). Throws what Simulation::setMotion throws.
-void applySwayCorrection(Simulation& sim, const Eigen::Vector3d& dp, const Eigen::Vector3d& dv);
-
 /// The whole update: modal coordinates `modes` (indices into the support's z) by the update's
-/// structure corrections, then the swing. Throws what Simulation::setMotion throws.
+/// structure corrections (none for an empty list), then the swing. Throws what
+/// Simulation::setMotion throws.
 void applyTwinCorrection(Simulation& sim, const SwayUpdate& update, const std::vector<int>& modes);
 
 /// Structure modes a payload measurement can see: those of a modal structure under max_hz that
@@ -36,8 +34,10 @@ void applyTwinCorrection(Simulation& sim, const SwayUpdate& update, const std::v
 /// structure or no crane.
 std::vector<int> swayCouplingModes(const Simulation& sim, double max_hz = 1.0, int max_modes = 6);
 
-/// The estimator's linearised model at the simulation's current pose for those modes.
-SwayModel swayModelAt(const Simulation& sim, const std::vector<int>& modes, double gravity);
+/// The estimator's linearised model at the simulation's current pose for those modes; `row` is
+/// the simulation's current output row (series()), which the caller usually has already.
+SwayModel swayModelAt(const Simulation& sim, const SeriesValues& row, const std::vector<int>& modes,
+                      double gravity);
 
 /// |Phi_k| of those modes at the current pose [m per unit modal coordinate].
 Eigen::VectorXd modeMotionNorms(const Simulation& sim, const std::vector<int>& modes);

@@ -82,6 +82,8 @@ class SwayEstimator {
                     const SwayModel& model);
   /// P propagated to now with `model` (n = 2 K + 4).
   const Eigen::MatrixXd& covariance(const SwayModel& model);
+  /// The payload's horizontal covariance H P H^T, P propagated to now with `model`.
+  Eigen::Matrix2d payloadCovariance(const SwayModel& model);
   /// sqrt of the largest eigenvalue of H P H^T: the 1-sigma radius of the payload [m] (as of
   /// the last propagation).
   double positionSigma() const;
@@ -90,6 +92,8 @@ class SwayEstimator {
 
  private:
   void propagate(const SwayModel& model);
+  /// H = [Phi 0 I 0] (2 x n).
+  Eigen::MatrixXd observation(const Eigen::Matrix2Xd& phi) const;
   SwayEstimatorSettings settings_;
   Eigen::VectorXd phi_norm_;
   int K_ = 0;
