@@ -3,7 +3,7 @@
 // (payload offset s from the trolley point, horizontal, world frame, and its rate) and the
 // structure's lowest modal coordinates eta_k (mass-normalised modes of the modal structure that
 // move the trolley point sideways), both corrected into the running simulation
-// (twin/twin_correction.hpp).
+// (twin/sway_correction.hpp).
 //
 // Error state e = [eta (K), eta' (K), s (2), s' (2)] (twin minus truth). The simulation itself
 // is the nonlinear predictor of the mean; the filter carries the error's covariance P through
