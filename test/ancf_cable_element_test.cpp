@@ -303,3 +303,75 @@ TEST(AncfDamping, RigidMotionIsNotDampedAndStretchingDissipates) {
   EXPECT_NEAR(stretch.dot(Q), c * p.axial_stiffness * epsdot * epsdot * p.length,
               1e-9 * c * p.axial_stiffness * epsdot * epsdot * p.length);
 }
+
+// Tension-only rope (docs/model.md "Tension-only rope"): no axial force in compression.
+namespace {
+AncfCableProperties tensionOnly() {
+  AncfCableProperties p = ropeElement();
+  p.tension_only = true;
+  return p;
+}
+// The bent element shortened by the factor s (positions and slopes).
+Vector12 shortened(double s) {
+  Vector12 e = bent();
+  for (int k : {3, 9}) e.segment<3>(k) *= s;
+  e.segment<3>(6) = e.segment<3>(0) + s * (e.segment<3>(6) - e.segment<3>(0));
+  return e;
+}
+}  // namespace
+
+TEST(AncfTensionOnly, CompressedElementCarriesOnlyItsBendingForce) {
+  // 2 % shorter: slack everywhere, so the force is the one of a rope without axial stiffness.
+  const Vector12 e = shortened(0.98);
+  AncfCableProperties bendingOnly = ropeElement();
+  bendingOnly.axial_stiffness = 0.0;
+  Vector12 Q, Qb;
+  ancfElasticForce(tensionOnly(), e, Q);
+  ancfElasticForce(bendingOnly, e, Qb);
+  EXPECT_LT((Q - Qb).norm(), 1e-12 * Qb.norm() + 1e-9);
+  EXPECT_NEAR(ancfElasticEnergy(tensionOnly(), e), ancfElasticEnergy(bendingOnly, e), 1e-12);
+  // The symmetric law pushes back with about EA * 2 %.
+  Vector12 Qs;
+  ancfElasticForce(ropeElement(), e, Qs);
+  EXPECT_GT((Qs - Qb).norm(), 0.01 * 4.4e7);
+}
+
+TEST(AncfTensionOnly, TautElementIsTheSymmetricOne) {
+  Vector12 Q, Qs;
+  Matrix12 K, Ks;
+  ancfElasticForce(tensionOnly(), stretched(), Q, &K);
+  ancfElasticForce(ropeElement(), stretched(), Qs, &Ks);
+  EXPECT_LT((Q - Qs).norm(), 1e-12 * Qs.norm());
+  EXPECT_LT((K - Ks).norm(), 1e-12 * Ks.norm());
+}
+
+TEST(AncfTensionOnly, ForceAndTangentAreTheEnergysDerivativesInEveryRegime) {
+  // Slack (2 % short), in the guard (30 % short: the slopes are kept from collapsing) and taut.
+  for (double s : {0.98, 0.7}) {
+    SCOPED_TRACE(s);
+    expectForceIsEnergyGradient(tensionOnly(), shortened(s));
+    expectTangentIsForceJacobian(tensionOnly(), shortened(s));
+  }
+  expectForceIsEnergyGradient(tensionOnly(), stretched());
+  expectTangentIsForceJacobian(tensionOnly(), stretched());
+}
+
+TEST(AncfTensionOnly, AxialLawIsContinuousWithAContinuousSlope) {
+  const double EA = 4.4e7, d = kSlackBand, g = kSlackGuardStrain;
+  double N, dN;
+  for (double eps : {-0.5, -0.25, -g - 1e-7, -g + 1e-7, -0.01, -d - 1e-9, -d + 1e-9, -0.3 * d, 0.0,
+                     0.7 * d, d - 1e-9, d + 1e-9, 1e-3}) {
+    SCOPED_TRACE(eps);
+    ancfAxialLaw(EA, eps, true, N, dN);
+    const double h = 1e-10;
+    double Np, Nm, dNp, dNm;
+    ancfAxialLaw(EA, eps + h, true, Np, dNp);
+    ancfAxialLaw(EA, eps - h, true, Nm, dNm);
+    EXPECT_NEAR((Np - Nm) / (2 * h), dN, 1e-3 * EA);  // N' (continuous: no jump at the joins)
+    EXPECT_NEAR((ancfAxialEnergy(EA, eps + h, true) - ancfAxialEnergy(EA, eps - h, true)) / (2 * h),
+                N, 1e-6 * EA * std::max(std::abs(eps), d));
+    EXPECT_GE(N, eps < -g ? -EA : 0.0);
+    if (eps > -g && eps <= -d) EXPECT_EQ(N, 0.0);
+    if (eps >= d) EXPECT_DOUBLE_EQ(N, EA * eps);
+  }
+}

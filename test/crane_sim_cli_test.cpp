@@ -413,5 +413,14 @@ TEST(CraneSimCli, PhysicalWarningsReachTheCsvAndStderr) {
   // Within the chart: no warning.
   const Result ok = run("run " + kScene + " --set rope.model=full --set structure.model=rigid"
                         " --set rope.elements=10 --set duration=0.1 --quiet");
-  EXPECT_EQ(ok.out.find("warning"), std::string::npos) << ok.out;
+  EXPECT_EQ(ok.out.find("warning:"), std::string::npos) << ok.out;
+  EXPECT_NE(ok.out.find("warnings_seen=0 warning_rows=none"), std::string::npos) << ok.out;
+  // The working load limit: the same run's tension ratio (about 0.10) over 1 / 12 of the
+  // breaking force, not over 1 / 5.
+  const Result wll = run("run " + kScene + " --set rope.model=full --set structure.model=rigid"
+                         " --set rope.elements=10 --set duration=0.1 --quiet --set rope.safety_factor=12");
+  EXPECT_NE(wll.out.find("warning: t = 0.000 s: rope tension over its working load limit"),
+            std::string::npos) << wll.out;
+  EXPECT_NE(wll.out.find("warnings_seen=32 warning_rows=32:11"), std::string::npos) << wll.out;
+  EXPECT_EQ(run("run " + kScene + " --set rope.safety_factor=0.5 --quiet").status, 2);
 }

@@ -72,6 +72,28 @@ TEST(PendulumRope, ElasticForceAndTangentMatchFiniteDifferences) {
   EXPECT_EQ(rope.tension(slack), 0.0);
 }
 
+TEST(PendulumRope, WithoutTensionOnlyTheBarPushesBackInCompression) {
+  PendulumRope rope = sampleRope();
+  rope.setTensionOnly(false);
+  Vector6 q = tautState();
+  q.tail<3>() = q.head<3>() + Eigen::Vector3d(0, 0, -59.0);  // 1 m short
+  EXPECT_NEAR(rope.tension(q), -4.4e7 / 60.0, 1e-6);
+  Vector6 Q;
+  Matrix6 K;
+  rope.elasticForce(q, Q, &K);
+  const double h = 1e-6;
+  for (int i = 0; i < 6; ++i) {
+    Vector6 qp = q, qm = q, Qp, Qm;
+    qp(i) += h;
+    qm(i) -= h;
+    EXPECT_NEAR(Q(i), (rope.elasticEnergy(qp) - rope.elasticEnergy(qm)) / (2 * h), 1e-4 * Q.norm());
+    rope.elasticForce(qp, Qp);
+    rope.elasticForce(qm, Qm);
+    EXPECT_LT(((Qp - Qm) / (2 * h) - K.col(i)).norm(), 1e-6 * K.norm()) << "column " << i;
+  }
+  EXPECT_NEAR(rope.elasticEnergy(q), 0.5 * 4.4e7 / 60.0, 1e-6);
+}
+
 TEST(PendulumRope, DampingForceIsLinearInVelocityAndDissipates) {
   const PendulumRope rope = sampleRope();
   const Vector6 q = tautState();

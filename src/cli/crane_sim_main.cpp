@@ -145,7 +145,7 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
     const ct::SeriesValues v = sim->series();
     if (series) ct::writeSeriesRow(series, v);
     if (nodes) sim->writeNodeRows(nodes);
-    for (int bit = 1; bit <= ct::kCommandLimited; bit <<= 1) {
+    for (int bit = 1; bit <= ct::kLastWarning; bit <<= 1) {
       if (!(v.warnings & bit)) continue;
       if (warned[bit]++ == 0) {
         if (bar) std::fprintf(stderr, "\n");
@@ -182,10 +182,18 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
                  sim->halvedSteps());
   }
   const double simS = steps * sc.time_step;
+  // Warning counts: the bits seen (docs/cli.md) and, per bit, the output rows that carried it.
+  int seen = 0;
+  std::string rows_per_bit;
+  for (const auto& [bit, rows] : warned) {
+    seen |= bit;
+    rows_per_bit += (rows_per_bit.empty() ? "" : ",") + std::to_string(bit) + ":" + std::to_string(rows);
+  }
   std::printf("summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=%d mode_updates_s=%.3g "
-              "hand_overs=%ld full_order_steps=%ld\n",
+              "hand_overs=%ld full_order_steps=%ld warnings_seen=%d warning_rows=%s\n",
               wall, simS, simS / wall, steps, sim->subdomains(), sim->modeUpdateSeconds(),
-              sim->handOvers(), sim->fullOrderSteps());
+              sim->handOvers(), sim->fullOrderSteps(), seen,
+              rows_per_bit.empty() ? "none" : rows_per_bit.c_str());
   return 0;
 }
 

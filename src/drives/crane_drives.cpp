@@ -13,7 +13,12 @@ bool moves(const CommandEntry& c) {
 }
 }  // namespace
 
-CraneDrives::CraneDrives(const Scene& scene) : scene_(scene) {
+CraneDrives::CraneDrives(const Scene& scene, double slew_inertia)
+    : scene_(scene), slew_inertia_(slew_inertia) {
+  if (scene.slew_drive.model == "torque" && !(slew_inertia > 0.0)) {
+    throw InputError(scene.file + ": key 'slewing.drive.model': the torque drive needs the "
+                     "rotating part's inertia (a crane structure)");
+  }
   for (const auto& c : scene.commands) {
     if (!moves(c)) continue;
     if (!scene.crane) {
@@ -32,10 +37,16 @@ void CraneDrives::reset() {
   slew_.emplace(c.slewing, scene_.slew_angle);
   trolley_.emplace(c.trolley, scene_.trolley_radius, c.min_radius, c.max_radius);
   hoist_.emplace(c.hoist, scene_.rope.length, c.min_rope_length, c.max_rope_length);
+  slew_torque_.reset();
+  const SlewDriveSettings& d = scene_.slew_drive;
+  if (d.model == "torque") {
+    slew_torque_.emplace(slew_inertia_, d.max_torque, d.stiffness, d.damping, scene_.slew_angle);
+  }
 }
 
 void CraneDrives::assignStateFrom(const CraneDrives& o) {
   slew_ = o.slew_;
+  slew_torque_ = o.slew_torque_;
   trolley_ = o.trolley_;
   hoist_ = o.hoist_;
   slew_flags_ = o.slew_flags_;
@@ -77,6 +88,10 @@ bool CraneDrives::advance(double t, double dt) {
   if (!active_ || !slew_) return false;
   const CommandEntry c = activeCommand(t);
   slew_flags_ = slew_->advance(c.slew_rate, dt);
+  if (slew_torque_) {
+    slew_torque_->advance(slew_->speed(), dt);
+    slew_flags_.torque_limited = slew_torque_->torqueLimited();
+  }
   trolley_flags_ = trolley_->advance(c.trolley_speed, dt);
   hoist_flags_ = hoist_->advance(c.hoist_speed, dt);
   return true;
@@ -86,6 +101,7 @@ void setCraneWarnings(const CraneModel& model, const CraneDrives& drives, Series
   const Scene& sc = model.scene;
   v.tension_ratio = v.rope_top_tension / model.rope.breaking_force;
   if (v.tension_ratio > 1.0) v.warnings |= kTensionOverBreakingForce;
+  if (v.tension_ratio * sc.rope.safety_factor > 1.0) v.warnings |= kTensionOverWorkingLoadLimit;
   if (sc.crane) {
     v.load_chart_ratio = sc.payload_mass / allowedLoad(*sc.crane, drives.trolleyRadius());
     if (v.load_chart_ratio > 1.0 + 1e-12) v.warnings |= kOutsideLoadChart;

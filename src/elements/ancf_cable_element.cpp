@@ -2,6 +2,7 @@
 
 #include "crane_twin/elements/gauss_legendre.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -66,6 +67,37 @@ void addVec(const Eigen::Vector4d& sa, const Eigen::Vector3d& v, double w, Vecto
 
 }  // namespace
 
+// Tension-only axial law (docs/model.md "Tension-only rope"), with d = kSlackBand:
+//   N = EA eps                        eps >= d
+//   N = EA (eps + d)^2 / (4 d)        -d < eps < d   (C1 join: no jump in the tangent)
+//   N = 0                             -g_c <= eps <= -d   (slack)
+//   N = EA (eps + g_c)                eps < -g_c          (guard, g_c = kSlackGuardStrain)
+// and its energy psi = int N d eps, psi(-d) = 0.
+void ancfAxialLaw(double EA, double eps, bool tension_only, double& N, double& dN) {
+  const double d = kSlackBand, gc = kSlackGuardStrain;
+  if (!tension_only || eps >= d) {
+    N = EA * eps;
+    dN = EA;
+  } else if (eps > -d) {
+    N = EA * (eps + d) * (eps + d) / (4.0 * d);
+    dN = EA * (eps + d) / (2.0 * d);
+  } else if (eps >= -gc) {
+    N = dN = 0.0;
+  } else {
+    N = EA * (eps + gc);
+    dN = EA;
+  }
+}
+
+double ancfAxialEnergy(double EA, double eps, bool tension_only) {
+  const double d = kSlackBand, gc = kSlackGuardStrain;
+  if (!tension_only) return 0.5 * EA * eps * eps;
+  if (eps >= d) return 0.5 * EA * eps * eps + EA * d * d / 6.0;
+  if (eps > -d) return EA * std::pow(eps + d, 3) / (12.0 * d);
+  if (eps >= -gc) return 0.0;
+  return 0.5 * EA * (eps + gc) * (eps + gc);
+}
+
 Eigen::Vector3d ancfPosition(const Vector12& e, double xi, double l) {
   return combine(ancfShape(xi, l), e);
 }
@@ -98,10 +130,10 @@ void ancfStrainCurvature(const Vector12& e, double xi, double l, double& eps, do
 }
 
 double ancfCableEnergyDensity(double EA, double EI, const Eigen::Vector3d& a,
-                             const Eigen::Vector3d& b) {
+                             const Eigen::Vector3d& b, bool tension_only) {
   const double g = a.norm();
-  const double eps = g - 1.0, kappa = a.cross(b).norm() / (g * g * g);
-  return 0.5 * (EA * eps * eps + EI * kappa * kappa);
+  const double kappa = a.cross(b).norm() / (g * g * g);
+  return ancfAxialEnergy(EA, g - 1.0, tension_only) + 0.5 * EI * kappa * kappa;
 }
 
 double ancfElasticEnergy(const AncfCableProperties& p, const Vector12& e) {
@@ -112,20 +144,28 @@ double ancfElasticEnergy(const AncfCableProperties& p, const Vector12& e) {
     U += wg(q) * p.length *
          ancfCableEnergyDensity(p.axial_stiffness, p.bending_stiffness,
                                 combine(ancfShapeDx(xg(q), p.length), e),
-                                combine(ancfShapeDxx(xg(q), p.length), e));
+                                combine(ancfShapeDxx(xg(q), p.length), e), p.tension_only);
   }
   return U;
 }
 
 void ancfCablePoint(double EA, double EI, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                    bool hessian, CablePointDerivatives& d) {
+                    bool hessian, CablePointDerivatives& d, bool tension_only) {
   const Eigen::Matrix3d I3 = Eigen::Matrix3d::Identity();
   const double h = a.squaredNorm();
   const double g = std::sqrt(h);
-  // Axial: phi = EA/2 (g - 1)^2; phi_a = EA (1 - 1/g) a;
-  // phi_aa = EA [(1 - 1/g) I + a a^T / g^3].
-  d.fa = EA * (1.0 - 1.0 / g) * a;
-  if (hessian) d.Paa = EA * ((1.0 - 1.0 / g) * I3 + a * a.transpose() / (h * g));
+  // Axial: phi = psi(eps), eps = g - 1, N = psi'(eps): phi_a = N a / g;
+  // phi_aa = N' a a^T / g^2 + (N / g) (I - a a^T / g^2). Symmetric: N = EA eps.
+  if (!tension_only || g >= 1.0 + kSlackBand) {
+    d.fa = EA * (1.0 - 1.0 / g) * a;
+    if (hessian) d.Paa = EA * ((1.0 - 1.0 / g) * I3 + a * a.transpose() / (h * g));
+  } else {
+    double N, dN;
+    ancfAxialLaw(EA, g - 1.0, tension_only, N, dN);
+    const Eigen::Vector3d t = a / g;
+    d.fa = N * t;
+    if (hessian) d.Paa = dN * t * t.transpose() + (N / g) * (I3 - t * t.transpose());
+  }
   if (EI == 0.0) {
     d.fb.setZero();
     if (hessian) d.Pab.setZero(), d.Pbb.setZero();
@@ -166,7 +206,7 @@ void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12&
     // Q = int (S_x^T phi_a + S_xx^T phi_b) dx; block (i, j) of the tangent gains
     // w (sx_i sx_j Paa + sx_i sxx_j Pab + sxx_i sx_j Pab^T + sxx_i sxx_j Pbb), computed for
     // j >= i only and mirrored (the profiled hot spot was one 3 x 3 update per term and pair).
-    ancfCablePoint(EA, EI, combine(sx, e), combine(sxx, e), K != nullptr, d);
+    ancfCablePoint(EA, EI, combine(sx, e), combine(sxx, e), K != nullptr, d, p.tension_only);
     addVec(sx, d.fa, w, Q);
     if (EI == 0.0) {
       if (K) addOuter(sx, sx, d.Paa, w, *K);
@@ -195,7 +235,9 @@ void ancfAxialDampingForce(const AncfCableProperties& p, double c, const Vector1
   for (int q = 0; q < gr.x.size(); ++q) {
     const double w = gr.w(q) * l;
     const Eigen::Vector4d sx = ancfShapeDx(gr.x(q), l);
-    const Eigen::Vector3d t = combine(sx, e).normalized();
+    const Eigen::Vector3d a = combine(sx, e);
+    if (p.tension_only && a.norm() - 1.0 <= -kSlackBand) continue;  // slack: no damper force
+    const Eigen::Vector3d t = a.normalized();
     const double epsDot = t.dot(combine(sx, edot));
     addVec(sx, cEA * epsDot * t, w, Q);
     if (C) addOuter(sx, sx, cEA * t * t.transpose(), w, *C);

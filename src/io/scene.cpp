@@ -99,11 +99,16 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     r.subdomain_residual = n.number("subdomain_residual", 0.0, Bounds::nonNegative());
     r.subdomain_frame = n.string("subdomain_frame", "fixed", {"fixed", "corotational"});
     r.subdomain_rotation = n.number("subdomain_rotation", 0.1, Bounds::closed(1e-4, 1.0));
+    // Default: on for the pendulum rope, off for the ANCF ropes for now (undamped, an ANCF
+    // tension-only rope's slack-taut transitions gain energy under the integrator,
+    // docs/model.md "Tension-only rope").
+    r.tension_only = n.boolean("tension_only", r.model == "pendulum");
     r.damping = n.number("damping", 0.0, Bounds::nonNegative());
     r.mass_per_length = n.number("mass_per_length", def.mass_per_length, Bounds::positive());
     r.axial_stiffness = n.number("axial_stiffness", def.axial_stiffness, Bounds::positive());
     r.bending_stiffness = n.number("bending_stiffness", def.bending_stiffness, Bounds::nonNegative());
     r.breaking_force = n.number("breaking_force", def.breaking_force, Bounds::positive());
+    r.safety_factor = n.number("safety_factor", 5.0, Bounds::closed(1.0, 100.0));
     n.finish();
     if (s.crane) {
       checkWithin(n, "length", r.length, s.crane->min_rope_length, s.crane->max_rope_length,
@@ -127,7 +132,25 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   {
     ConfigNode n = root.map("slewing");
     s.slew_angle = n.number("angle", 0.0, Bounds::any());
-    s.slew_inertial_loads = n.boolean("inertial_loads", false);
+    // On by default wherever the structure is flexible: the loads vanish while the crane does
+    // not slew, and a node's command may slew any scene.
+    s.slew_inertial_loads = n.boolean("inertial_loads", s.structure_model != "rigid");
+    if (n.has("drive")) {
+      ConfigNode d = n.map("drive");
+      SlewDriveSettings& dr = s.slew_drive;
+      dr.model = d.string("model", "kinematic", {"kinematic", "torque"});
+      if (dr.model == "torque") {
+        if (!s.crane) d.fail("model", "a slewing drive needs a crane (crane: none has none)");
+        dr.max_torque = d.number("max_torque", std::nullopt, Bounds::positive());
+        dr.stiffness = d.number("stiffness", 0.0, Bounds::nonNegative());
+        dr.damping = d.number("damping", 0.0, Bounds::nonNegative());
+      } else {
+        for (const char* k : {"max_torque", "stiffness", "damping"}) {
+          if (d.has(k)) d.fail(k, "only used with model: torque");
+        }
+      }
+      d.finish();
+    }
     n.finish();
   }
   {

@@ -33,7 +33,7 @@ struct TwinSettings {
   double payload_timeout = 2.0;        ///< [s] without a payload measurement: open loop
   double forecast_horizon = 30.0;      ///< [s]
   double forecast_rate = 1.0;          ///< [Hz of wall time], 0: no forecast
-  double forecast_time_step = 0.02;    ///< [s], 0: the scene's
+  double forecast_time_step = 0.01;    ///< [s], 0: the scene's
   double forecast_sample_period = 0.5; ///< [s] between the path's poses
 };
 

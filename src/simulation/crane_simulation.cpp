@@ -21,9 +21,11 @@ const CraneModel& ancfRopeModel(const CraneModel& m) {
 }  // namespace
 
 AncfRope sceneRope(const CraneModel& m) {
-  return AncfRope(m.scene.rope.elements, m.scene.rope.length, m.rope.mass_per_length,
-                  m.rope.axial_stiffness, m.rope.bending_stiffness, m.end_mass,
-                  m.gravityVector(), m.trolleyMass());
+  AncfRope rope(m.scene.rope.elements, m.scene.rope.length, m.rope.mass_per_length,
+                m.rope.axial_stiffness, m.rope.bending_stiffness, m.end_mass, m.gravityVector(),
+                m.trolleyMass());
+  rope.setTensionOnly(m.scene.rope.tension_only);
+  return rope;
 }
 
 CraneSimulation::CraneSimulation(const CraneModel& m) : SupportedRopeSimulation(ancfRopeModel(m)) {

@@ -11,6 +11,7 @@ PendulumCraneSimulation::PendulumCraneSimulation(const CraneModel& m)
   rope_ = std::make_unique<PendulumRope>(sc.rope.length, model_.rope.mass_per_length,
                                          model_.rope.axial_stiffness, model_.end_mass,
                                          model_.gravityVector(), model_.trolleyMass());
+  rope_->setTensionOnly(sc.rope.tension_only);
   solver_ = std::make_unique<PendulumSolver>(*rope_, *support_, GeneralizedAlpha::forScene(sc),
                                              sc.time_step);
   solver_->setRopeDamping(sc.rope.damping);

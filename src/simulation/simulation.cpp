@@ -23,6 +23,8 @@ const char* warningName(int bit) {
     case kRopeLengthAtLimit: return "rope length at its limit";
     case kTrolleyAtLimit: return "trolley at its radius limit";
     case kCommandLimited: return "command above a drive's speed limit, limited";
+    case kTensionOverWorkingLoadLimit:
+      return "rope tension over its working load limit (breaking force / safety factor)";
     default: return "unknown warning";
   }
 }

@@ -48,8 +48,18 @@ std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
   return full;
 }
 
+namespace {
+// The rotating part's inertia for a torque slewing drive (0 otherwise: not needed).
+double torqueDriveInertia(const CraneModel& m) {
+  if (m.scene.slew_drive.model != "torque" || !m.structure) return 0.0;
+  return slewingInertia(*m.structure, m.trolleyMass(), m.scene.trolley_radius);
+}
+}  // namespace
+
 SupportedRopeSimulation::SupportedRopeSimulation(const CraneModel& model)
-    : model_(model), drives_(model_.scene), support_(makeRopeSupport(model_)) {}
+    : model_(model),
+      drives_(model_.scene, torqueDriveInertia(model_)),
+      support_(makeRopeSupport(model_)) {}
 
 void SupportedRopeSimulation::resetDrivesAndPose() {
   const Scene& sc = model_.scene;

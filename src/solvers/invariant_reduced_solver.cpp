@@ -114,6 +114,7 @@ Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
   const double EA = rope_.element().axial_stiffness, EI = rope_.element().bending_stiffness;
   const double c1 = 1.0 / L_, c2 = 1.0 / (L_ * L_), cEA = damping_ * EA;
   const bool damped = cEA > 0.0 && yd.size() == y.size();
+  const bool tension_only = rope_.element().tension_only;
   Eigen::VectorXd out = Eigen::VectorXd::Zero(3 * m_);
   double* Q = out.data();
   const double* A = y.data();
@@ -130,8 +131,8 @@ Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
     }
     a *= c1;
     b *= c2;
-    ancfCablePoint(EA, EI, a, b, false, d);
-    if (damped) {
+    ancfCablePoint(EA, EI, a, b, false, d, tension_only);
+    if (damped && !(tension_only && a.norm() - 1.0 <= -kSlackBand)) {
       Eigen::Vector3d ad = Eigen::Vector3d::Zero();
       for (int k = 0; k < m_; ++k) ad += d1[k] * Eigen::Map<const Eigen::Vector3d>(Ad + 3 * k);
       const Eigen::Vector3d t = a.normalized();
@@ -153,7 +154,8 @@ double InvariantReducedSolver::elasticEnergy(const Eigen::VectorXd& y) const {
   const Matrix3X Rxx = A * D2_ / (L_ * L_);
   double U = 0.0;
   for (int g = 0; g < w_.size(); ++g)
-    U += w_(g) * L_ * ancfCableEnergyDensity(EA, EI, Rx.col(g), Rxx.col(g));
+    U += w_(g) * L_ * ancfCableEnergyDensity(EA, EI, Rx.col(g), Rxx.col(g),
+                                             rope_.element().tension_only);
   return U;
 }
 

@@ -99,6 +99,12 @@ void StructureSupportBase::setSlewMotion(double rate, double acceleration) {
   slew_acceleration_ = acceleration;
 }
 
+double slewingInertia(const TowerCraneStructure& s, double point_mass, double radius) {
+  Eigen::VectorXd r, c;
+  slewingFields(s, r, c);
+  return r.dot(s.M * r) + point_mass * radius * radius;
+}
+
 // T^T f = -(theta'' T^T M r_theta + theta'^2 T^T M c).
 Eigen::VectorXd StructureSupportBase::slewingLoad() const {
   if (euler_.size() == 0) return Eigen::VectorXd::Zero(size());

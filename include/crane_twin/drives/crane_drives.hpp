@@ -9,6 +9,7 @@
 
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/drives/drive_axis.hpp"
+#include "crane_twin/drives/slew_torque_drive.hpp"
 #include "crane_twin/io/scene.hpp"
 #include "crane_twin/simulation/simulation.hpp"
 
@@ -17,8 +18,10 @@ namespace crane_twin {
 class CraneDrives {
  public:
   /// The scene is referenced (it must outlive the drives). Throws InputError when the schedule
-  /// commands motion without a crane (crane: none), naming the key.
-  explicit CraneDrives(const Scene& scene);
+  /// commands motion without a crane (crane: none), naming the key. slew_inertia [kg m^2] is the
+  /// rotating part's inertia about the slewing axis (slewingInertia), needed by
+  /// `slewing.drive: {model: torque}` (InputError without it).
+  explicit CraneDrives(const Scene& scene, double slew_inertia = 0.0);
 
   /// Back to the scene's initial pose, at rest, the manual command cleared.
   void reset();
@@ -40,11 +43,20 @@ class CraneDrives {
   bool active() const { return active_; }
   /// The schedule or the manual command asks for hoisting.
   bool hoists() const;
-  double slewAngle() const { return slew_ ? slew_->position() : scene_.slew_angle; }
+  /// The rotating part's slewing angle: the kinematic profile, or the torque drive's state.
+  double slewAngle() const {
+    return slew_torque_ ? slew_torque_->angle() : slew_ ? slew_->position() : scene_.slew_angle;
+  }
   double trolleyRadius() const { return trolley_ ? trolley_->position() : scene_.trolley_radius; }
-  double slewRate() const { return slew_ ? slew_->speed() : 0.0; }
+  double slewRate() const {
+    return slew_torque_ ? slew_torque_->rate() : slew_ ? slew_->speed() : 0.0;
+  }
   /// The slewing acceleration over the last step [rad/s^2].
-  double slewAcceleration() const { return slew_ ? slew_->acceleration() : 0.0; }
+  double slewAcceleration() const {
+    return slew_torque_ ? slew_torque_->acceleration() : slew_ ? slew_->acceleration() : 0.0;
+  }
+  /// The torque drive (empty with the kinematic drive).
+  const std::optional<SlewTorqueDrive>& slewTorqueDrive() const { return slew_torque_; }
   double trolleySpeed() const { return trolley_ ? trolley_->speed() : 0.0; }
   double hoistSpeed() const { return hoist_ ? hoist_->speed() : 0.0; }
   /// The hoist drive's hanging length (the scene's length without a crane) [m].
@@ -57,6 +69,8 @@ class CraneDrives {
  private:
   const Scene& scene_;
   std::optional<DriveAxis> slew_, trolley_, hoist_;
+  double slew_inertia_ = 0.0;
+  std::optional<SlewTorqueDrive> slew_torque_;  ///< slewing.drive.model torque
   DriveFlags slew_flags_, trolley_flags_, hoist_flags_;
   bool active_ = false;
   std::optional<CommandEntry> manual_;

@@ -15,6 +15,7 @@ namespace crane_twin {
 struct DriveFlags {
   bool speed_limited = false;     ///< |command| exceeded the speed limit
   bool at_position_limit = false; ///< braking for, or holding at, a position limit
+  bool torque_limited = false;    ///< slewing torque drive at its torque limit
 };
 
 class DriveAxis {

@@ -27,6 +27,9 @@ struct AncfCableProperties {
   double axial_stiffness = 1.0;    ///< EA [N]
   double bending_stiffness = 0.0;  ///< EI [N m^2]; 0 turns bending off
   int gauss_points = 5;            ///< quadrature points per element (1..10)
+  /// A wire rope takes no compression (`rope.tension_only`, docs/scenes.md): the axial energy
+  /// is EA/2 max(eps, 0)^2, so neither force nor stiffness remain where eps < 0.
+  bool tension_only = false;
 };
 
 /// Shape function values [S1, S2, S3, S4] at xi in [0, 1] for element length l.
@@ -35,6 +38,20 @@ Eigen::Vector4d ancfShape(double xi, double l);
 Eigen::Vector4d ancfShapeDx(double xi, double l);
 /// d2/dx2 of the shape functions (per square metre).
 Eigen::Vector4d ancfShapeDxx(double xi, double l);
+
+/// Tension-only rope: compressive strain taken without force, down to this guard [-] (below it
+/// the axial energy is EA/2 (eps + guard)^2, so a slack element's slopes cannot collapse to
+/// zero length, where the bending energy is singular; docs/model.md "Tension-only rope").
+constexpr double kSlackGuardStrain = 0.2;
+/// Half width of the strain band over which a tension-only rope's force rises from 0 to EA eps
+/// with a continuous tangent (ancfAxialLaw) [-]: a kink there made Newton cycle between slack and
+/// taut and the 60 deg swing gain energy without bound.
+constexpr double kSlackBand = 1e-5;
+
+/// Axial force N(eps) [N] and its slope dN/deps of the rope's axial law (EA eps, or the
+/// tension-only law of docs/model.md), and the energy density psi(eps) = int N [J/m].
+void ancfAxialLaw(double EA, double eps, bool tension_only, double& N, double& dN);
+double ancfAxialEnergy(double EA, double eps, bool tension_only);
 
 /// Position r(xi) = S(xi) e.
 Eigen::Vector3d ancfPosition(const Vector12& e, double xi, double l);
@@ -56,12 +73,13 @@ void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12&
 ///   Q_d = int c EA eps' (d eps / d e)^T dx,  eps' = t . r_x',  t = r_x / |r_x|,
 /// dissipating int c EA eps'^2 dx >= 0 and zero for rigid motions. C_d = d Q_d / d e' =
 /// int c EA S_x^T t t^T S_x dx into *C when given (the dependence on e through t is left out
-/// of the iteration matrix).
+/// of the iteration matrix). With tension_only the damper sits in parallel with the spring:
+/// it acts only where eps > 0 (a slack rope carries no force).
 void ancfAxialDampingForce(const AncfCableProperties& p, double c, const Vector12& e,
                            const Vector12& edot, Vector12& Q, Matrix12* C = nullptr);
 
 /// The energy density phi(a, b) = EA/2 (|a| - 1)^2 + EI/2 |a x b|^2 / |a|^6 of one point of the
-/// rope, a = r_x [-], b = r_xx [1/m] (the integrand of U above), and its derivatives: the
+/// rope (EA/2 max(|a| - 1, 0)^2 for the axial part when tension_only), a = r_x [-], b = r_xx [1/m] (the integrand of U above), and its derivatives: the
 /// gradient (fa, fb) = (d phi/da, d phi/db) [N] and, when asked, the Hessian blocks Paa, Pab,
 /// Pbb (Pab = d2 phi / da db^T). The element and the reduced rope (InvariantRopeBasis) both
 /// integrate this function, so they share one energy.
@@ -71,10 +89,10 @@ struct CablePointDerivatives {
                   Pbb = Eigen::Matrix3d::Zero();
 };
 void ancfCablePoint(double EA, double EI, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                    bool hessian, CablePointDerivatives& d);
+                    bool hessian, CablePointDerivatives& d, bool tension_only = false);
 /// The density phi(a, b) itself [J/m] (what ancfCablePoint differentiates).
 double ancfCableEnergyDensity(double EA, double EI, const Eigen::Vector3d& a,
-                             const Eigen::Vector3d& b);
+                             const Eigen::Vector3d& b, bool tension_only = false);
 
 /// Axial strain eps and curvature kappa at xi (for output and tests).
 void ancfStrainCurvature(const Vector12& e, double xi, double l, double& eps, double& kappa);

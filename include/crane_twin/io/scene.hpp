@@ -38,6 +38,17 @@ struct RopeSettings {
   double axial_stiffness = 2.2e7; ///< EA per fall [N]
   double bending_stiffness = 78.5;///< EI per fall [N m^2]
   double breaking_force = 345e3;  ///< per fall [N]
+  bool tension_only = false;      ///< no axial force in compression (docs/scenes.md)
+  double safety_factor = 5.0;     ///< working load limit = breaking_force / safety_factor
+};
+
+/// `slewing.drive` (docs/scenes.md): kinematic (the angle follows the ramped rate command) or a
+/// torque-limited drive through a torsional gear (SlewTorqueDrive).
+struct SlewDriveSettings {
+  std::string model = "kinematic";  ///< kinematic | torque
+  double max_torque = 0.0;          ///< torque: gear torque limit [N m]
+  double stiffness = 0.0;           ///< torque: gear stiffness at the ring [N m/rad], 0: rigid
+  double damping = 0.0;             ///< torque: gear damping [N m s/rad]
 };
 
 struct Scene {
@@ -57,7 +68,8 @@ struct Scene {
   double payload_mass = 3600.0;
   double trolley_radius = 80.0;
   double slew_angle = 0.0;
-  bool slew_inertial_loads = false;
+  bool slew_inertial_loads = false;  ///< default: on when the structure is flexible
+  SlewDriveSettings slew_drive;
   std::string initial_mode = "equilibrium";  ///< equilibrium | stress_free
   double swing_deg = 2.3;
   double swing_azimuth_deg = 0.0;

@@ -33,6 +33,8 @@ class AncfRope {
   double topMass() const { return top_mass_; }
   const Eigen::Vector3d& gravity() const { return gravity_; }
   const AncfCableProperties& element() const { return element_; }
+  /// `rope.tension_only` (docs/scenes.md): no axial force in compression (AncfCableProperties).
+  void setTensionOnly(bool on) { element_.tension_only = on; }
   const SparseMatrix& massMatrix() const { return M_; }
   const Eigen::VectorXd& gravityForce() const { return Fg_; }
 

@@ -11,7 +11,8 @@
 //   Gravity:  F_g = M [g; g]: mu L g / 2 at each end plus the point masses' weights, so the
 //             top force at rest is (m_end + mu L) g, the ANCF rope's.
 //   Elastic:  l = |r_1 - r_0|, u = (r_1 - r_0) / l, tension T = EA (l - L) / L for l > L and
-//             0 when slack (a rope takes no compression);
+//             0 when slack (a rope takes no compression; with `rope.tension_only: false` the
+//             bar also pushes, T < 0 for l < L, as the ANCF rope's symmetric energy does);
 //             Q = T [-u; u],  K = dQ/dq = [[K_b, -K_b], [-K_b, K_b]],
 //             K_b = EA / L u u^T + T / l (I - u u^T) (taut; 0 slack);
 //             U = EA (l - L)^2 / (2 L) for l > L.
@@ -42,6 +43,9 @@ class PendulumRope {
   double endMass() const { return end_mass_; }
   double topMass() const { return top_mass_; }
   const Eigen::Vector3d& gravity() const { return g_; }
+  /// `rope.tension_only` (default true here as in scenes): false lets the bar take compression.
+  void setTensionOnly(bool on) { tension_only_ = on; }
+  bool tensionOnly() const { return tension_only_; }
   const Matrix6& massMatrix() const { return M_; }
   const Vector6& gravityForce() const { return Fg_; }
 
@@ -62,6 +66,7 @@ class PendulumRope {
 
  private:
   double L_, mu_, EA_, end_mass_, top_mass_;
+  bool tension_only_ = true;
   Eigen::Vector3d g_;
   Matrix6 M_;
   Vector6 Fg_;

@@ -39,6 +39,8 @@ enum Warning : int {
   kRopeLengthAtLimit = 4,         ///< the hoist is braking for or holding at a length limit
   kTrolleyAtLimit = 8,            ///< the trolley is braking for or holding at a radius limit
   kCommandLimited = 16,           ///< a command above a drive's speed limit was limited
+  kTensionOverWorkingLoadLimit = 32,  ///< tension_ratio > 1 / rope.safety_factor
+  kLastWarning = kTensionOverWorkingLoadLimit,
 };
 /// Human-readable name of one warning bit.
 const char* warningName(int bit);

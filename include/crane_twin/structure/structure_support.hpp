@@ -82,6 +82,10 @@ class StructureSupportBase : public RopeSupport {
 /// The free-DOF fields of the slewing frame's motion (see above): r_theta = [e_z x X; e_z] and
 /// c = [-(X_x, X_y, 0); 0] on the rotating nodes, 0 on the mast's.
 void slewingFields(const TowerCraneStructure& s, Eigen::VectorXd& r_theta, Eigen::VectorXd& c);
+/// Inertia of the rotating part about the slewing axis, J = r_theta^T M r_theta [kg m^2]
+/// (r_theta of slewingFields: every node off the mast), plus a point mass m at radius r (the
+/// trolley).
+double slewingInertia(const TowerCraneStructure& s, double point_mass = 0.0, double radius = 0.0);
 
 class ModalStructureSupport final : public StructureSupportBase {
  public:
