@@ -17,6 +17,7 @@ BeamSection BeamSection::circularTube(double D, double t, double E, double G, do
   s.G = G;
   s.density = density;
   s.area = M_PI / 4.0 * (D * D - d * d);
+  s.outer_diameter = D;
   s.Iy = s.Iz = M_PI / 64.0 * (std::pow(D, 4) - std::pow(d, 4));
   s.J = 2.0 * s.Iy;
   s.shear_area_y = s.shear_area_z = 0.5 * s.area;  // thin-walled tube shear factor 1/2

@@ -171,6 +171,39 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     }
   }
   s.gravity = root.number("gravity", 9.81, Bounds::nonNegative());
+  if (root.has("wind")) {
+    ConfigNode n = root.map("wind");
+    WindSettings w;
+    w.speed = n.number("speed", std::nullopt, Bounds::nonNegative());
+    w.direction_deg = n.number("direction_deg", 0.0, Bounds::closed(-360.0, 360.0));
+    w.profile_exponent = n.number("profile_exponent", 0.14, Bounds::closed(0.0, 1.0));
+    if (n.has("gust")) {
+      ConfigNode g = n.map("gust");
+      w.gust_intensity = g.number("intensity", std::nullopt, Bounds::closed(0.0, 1.0));
+      w.gust_seed = g.integer("seed", 0, 0, std::numeric_limits<int>::max());
+      g.finish();
+    }
+    {
+      // Default area: the payload drawn as a cube of 1000 kg/m^3 (docs/ros.md markers).
+      ConfigNode p = n.map("payload");
+      w.payload_area = p.number("area", std::pow(s.payload_mass / 1000.0, 2.0 / 3.0),
+                                Bounds::nonNegative());
+      w.payload_drag_coefficient = p.number("drag_coefficient", 1.05, Bounds::closed(0.0, 5.0));
+      p.finish();
+    }
+    w.rope_drag_coefficient = n.number("rope_drag_coefficient", 1.2, Bounds::closed(0.0, 5.0));
+    w.in_service_limit = n.number("in_service_limit", 20.0, Bounds::positive());
+    n.finish();
+    if (!s.crane && s.anchor.z() <= 0.0) {
+      root.fail("wind", "with crane: none the anchor must stand above the ground (z > 0): the "
+                        "wind's profile is measured from z = 0");
+    }
+    if (s.rope.model == "reduced" && s.rope.reduction == "subdomains") {
+      root.fail("wind", "the subdomain reduced rope (rope.reduction: subdomains) takes no wind; "
+                        "use rope.reduction: invariant, rope.model: full or pendulum");
+    }
+    s.wind = w;
+  }
   double last_t = -1.0;
   for (ConfigNode c : root.mapList("commands")) {
     CommandEntry e;

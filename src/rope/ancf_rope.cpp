@@ -91,6 +91,24 @@ void AncfRope::updateGravityForce() {
   Eigen::VectorXd g = Eigen::VectorXd::Zero(dofs());
   for (int j = 0; j < nodes(); ++j) g.segment<3>(6 * j) = gravity_;
   Fg_ = M_ * g;
+  if (ext_per_length_.isZero() && ext_end_.isZero()) return;
+  const double l = element_.length;
+  for (int k = 0; k < elements_; ++k) {
+    Fg_.segment<3>(6 * k) += 0.5 * l * ext_per_length_;
+    Fg_.segment<3>(6 * k + 3) += l * l / 12.0 * ext_per_length_;
+    Fg_.segment<3>(6 * k + 6) += 0.5 * l * ext_per_length_;
+    Fg_.segment<3>(6 * k + 9) -= l * l / 12.0 * ext_per_length_;
+  }
+  Fg_.segment<3>(6 * elements_) += ext_end_;
+}
+
+void AncfRope::setExternalLoad(const Eigen::Vector3d& per_length, const Eigen::Vector3d& end_force) {
+  if (!per_length.allFinite() || !end_force.allFinite()) {
+    throw std::invalid_argument("rope external load must be finite");
+  }
+  ext_per_length_ = per_length;
+  ext_end_ = end_force;
+  updateGravityForce();
 }
 
 void AncfRope::elasticForce(const Eigen::VectorXd& q, Eigen::VectorXd& Q,

@@ -32,9 +32,24 @@ void PendulumRope::setLength(double length) {
   M_.topLeftCorner<3, 3>() = (m / 3.0 + top_mass_) * I;
   M_.bottomRightCorner<3, 3>() = (m / 3.0 + end_mass_) * I;
   M_.topRightCorner<3, 3>() = M_.bottomLeftCorner<3, 3>() = (m / 6.0) * I;
+  updateLoad();
+}
+
+void PendulumRope::updateLoad() {
   Vector6 gg;
   gg << g_, g_;
   Fg_ = M_ * gg;
+  Fg_.head<3>() += 0.5 * L_ * ext_per_length_;
+  Fg_.tail<3>() += 0.5 * L_ * ext_per_length_ + ext_end_;
+}
+
+void PendulumRope::setExternalLoad(const Eigen::Vector3d& per_length, const Eigen::Vector3d& end_force) {
+  if (!per_length.allFinite() || !end_force.allFinite()) {
+    throw std::invalid_argument("pendulum rope: external load must be finite");
+  }
+  ext_per_length_ = per_length;
+  ext_end_ = end_force;
+  updateLoad();
 }
 
 double PendulumRope::tension(const Vector6& q) const {

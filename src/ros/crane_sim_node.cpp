@@ -1,5 +1,6 @@
 #include "crane_sim_node.hpp"
 
+#include <Eigen/Geometry>
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <ros/master.h>
 #include <rosbag/bag.h>
@@ -163,6 +164,7 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   if (settings_.twin.measured_input && !settings_.command_bag.empty()) {
     throw InputError("parameters '~input' 'measured' and '~command_bag' exclude each other");
   }
+  base_yaw_ = yaw;
   twin_ = std::make_unique<TwinAdapter>(nh_, settings_.twin, frames_, base, yaw);
   loadReplay();
   resetSimulation();
@@ -176,6 +178,7 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   static_tf_.sendTransform(toBaseTransform(frames_, base, yaw, ros::Time::now()));
   command_sub_ = nh_.subscribe("crane/command", 20, &CraneSimNode::onCommand, this);
   trajectory_sub_ = nh_.subscribe("crane/joint_trajectory", 5, &CraneSimNode::onTrajectory, this);
+  wind_sub_ = nh_.subscribe("crane/wind", 10, &CraneSimNode::onWind, this);
   goal_pub_ = nh_.advertise<std_msgs::Bool>("crane/goal_reached", 1, true);
   follower_t_.assign(settings_.clock_followers.size(), -std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < settings_.clock_followers.size(); ++i) {
@@ -237,6 +240,7 @@ void CraneSimNode::resetSimulation() {
 void CraneSimNode::restartSimulation() {
   sim_ = makeSimulation(model_);
   sim_->initialize();
+  if (measured_wind_) sim_->setMeasuredWind(*measured_wind_);
   twin_->restart(model_, *sim_);
   follower_.cancel();
   watchdog_ = CommandWatchdog(settings_.command_timeout);
@@ -308,6 +312,31 @@ void CraneSimNode::onCommand(const CraneCommand::ConstPtr& msg) {
   if (follower_.active()) {  // a rate command takes over from a goal
     follower_.cancel();
     ROS_INFO("crane_sim_node: trajectory cancelled by a rate command on crane/command");
+  }
+}
+
+// An anemometer's wind at the jib's height (docs/ros.md): m/s in the world frame, turned into
+// the crane's frame; its horizontal part replaces the scene's wind from the next step on.
+void CraneSimNode::onWind(const geometry_msgs::Vector3Stamped::ConstPtr& msg) {
+  const Eigen::Vector3d w(msg->vector.x, msg->vector.y, msg->vector.z);
+  const std::string& frame = msg->header.frame_id;
+  std::string why;
+  if (!w.allFinite()) why = "a non-finite component";
+  if (!frame.empty() && frame != "world" && frame != "/world") {
+    why = "frame '" + frame + "' (the wind is taken in 'world')";
+  }
+  if (!why.empty()) {
+    ++rejected_;
+    warnThrottled("crane/wind rejected: " + why);
+    return;
+  }
+  const Eigen::Vector3d v = Eigen::AngleAxisd(-base_yaw_, Eigen::Vector3d::UnitZ()) * w;
+  try {
+    sim_->setMeasuredWind(v);
+    measured_wind_ = v;
+  } catch (const std::exception& e) {  // InputError: this rope model takes no wind
+    ++rejected_;
+    warnThrottled(std::string("crane/wind rejected: ") + e.what());
   }
 }
 
@@ -517,6 +546,7 @@ void CraneSimNode::publish() {
   if (options.structure_segments) last_structure_wall_ = now;
   const CraneSnapshot s = snapshotOf(*sim_, options);
   warnings_seen_ |= s.series.warnings;
+  last_wind_3s_ = s.series.wind_3s;
   if (settings_.publish_clock) {
     rosgraph_msgs::Clock c;
     c.clock = st;
@@ -600,6 +630,13 @@ void CraneSimNode::publishDiagnostics() {
   addNumber(d, "rejected_commands", static_cast<double>(rejected_));
   addNumber(d, "pacing_overruns", static_cast<double>(overruns_));
   addNumber(d, "warnings_seen", warnings_seen_);
+  {
+    std::string names;
+    for (int bit = 1; bit <= kLastWarning; bit <<= 1)
+      if (warnings_seen_ & bit) names += (names.empty() ? "" : "; ") + std::string(warningName(bit));
+    addKeyValue(d, "warnings_seen_names", names.empty() ? "none" : names);
+  }
+  addNumber(d, "wind_3s", last_wind_3s_);
   addKeyValue(d, "rope_model", model_.scene.rope.model);
   twin_->diagnose(*sim_, d);
   a.status.push_back(d);

@@ -4,6 +4,7 @@
 // snapshotOf() computes. Nothing here is physics.
 #pragma once
 
+#include <geometry_msgs/Vector3Stamped.h>
 #include <ros/ros.h>
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
@@ -13,6 +14,7 @@
 
 #include <deque>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -86,7 +88,9 @@ class CraneSimNode {
   std::deque<Replayed> replay_;  ///< commands still to apply, by simulated time
   std::vector<Replayed> replay_all_;
 
-  ros::Subscriber command_sub_, trajectory_sub_;
+  ros::Subscriber command_sub_, trajectory_sub_, wind_sub_;
+  double base_yaw_ = 0.0;  ///< the crane's frame turned about z on the site [rad]
+  std::optional<Eigen::Vector3d> measured_wind_;  ///< crane frame, re-applied after a restart
   ros::Publisher goal_pub_;
   TrajectoryFollower follower_;
   void onTrajectory(const trajectory_msgs::JointTrajectory::ConstPtr& msg);
@@ -134,6 +138,7 @@ class CraneSimNode {
   double last_step_cost_ = 0.0, last_rtf_ = 0.0;
   long steps_ = 0, rejected_ = 0, overruns_ = 0;
   int warnings_seen_ = 0;
+  double last_wind_3s_ = 0.0;  ///< 3 s mean wind at the jib in the last publication [m/s]
   ros::WallTime last_warn_wall_, last_diag_wall_, last_recorder_check_;
 
   void loadReplay();
@@ -149,6 +154,7 @@ class CraneSimNode {
   ros::Time stamp(double t) const;
   void warnThrottled(const std::string& what);
   void onCommand(const CraneCommand::ConstPtr& msg);
+  void onWind(const geometry_msgs::Vector3Stamped::ConstPtr& msg);
   bool onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   bool onPause(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
 };

@@ -23,6 +23,7 @@ const char* warningName(int bit) {
     case kRopeLengthAtLimit: return "rope length at its limit";
     case kTrolleyAtLimit: return "trolley at its radius limit";
     case kCommandLimited: return "command above a drive's speed limit, limited";
+    case kWindOverInServiceLimit: return "3 s mean wind at the jib over the in-service limit";
     case kTensionOverWorkingLoadLimit:
       return "rope tension over its working load limit (breaking force / safety factor)";
     default: return "unknown warning";
@@ -40,6 +41,10 @@ void writeSeriesRow(std::ostream& out, const SeriesValues& v) {
   out << ',' << v.rope_top_tension << ',' << v.rope_length << ',' << v.slew_angle << ','
       << v.trolley_radius << ',' << v.energy << ',' << v.constraint_error << ',' << v.subdomains
       << ',' << v.tension_ratio << ',' << v.load_chart_ratio << ',' << v.warnings << ',' << v.full_order_steps << '\n';
+}
+
+void Simulation::setMeasuredWind(const Eigen::Vector3d&) {
+  throw InputError("this rope model takes no wind (rope.reduction: subdomains)");
 }
 
 void Simulation::continueFrom(const Simulation&) {

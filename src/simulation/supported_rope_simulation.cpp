@@ -4,6 +4,7 @@
 
 #include "crane_twin/integrators/newton_step.hpp"
 #include "crane_twin/io/input_error.hpp"
+#include "crane_twin/loads/wind_loads.hpp"
 #include "crane_twin/rope/swing_direction.hpp"
 #include "crane_twin/structure/modal_analysis.hpp"
 #include "crane_twin/structure/structure_support.hpp"
@@ -56,26 +57,92 @@ double torqueDriveInertia(const CraneModel& m) {
 }
 }  // namespace
 
+// The height the wind's jib figures refer to: the trolley rail's, or the anchor's.
+double windJibHeight(const CraneModel& m) {
+  return m.structure ? trolleyPoint(*m.structure, m.scene.crane->max_radius).z()
+                     : m.scene.anchor.z();
+}
+
 SupportedRopeSimulation::SupportedRopeSimulation(const CraneModel& model)
     : model_(model),
       drives_(model_.scene, torqueDriveInertia(model_)),
-      support_(makeRopeSupport(model_)) {}
+      support_(makeRopeSupport(model_)) {
+  if (model_.scene.wind) wind_.emplace(*model_.scene.wind, windJibHeight(model_));
+}
+
+void SupportedRopeSimulation::setMeasuredWind(const Eigen::Vector3d& v) {
+  if (!v.allFinite()) throw std::invalid_argument("measured wind must be finite");
+  if (!wind_) {
+    if (!(windJibHeight(model_) > 0.0)) {
+      throw InputError(model_.scene.file + ": a measured wind needs the anchor above the ground");
+    }
+    WindSettings w;
+    w.payload_area = std::pow(model_.scene.payload_mass / 1000.0, 2.0 / 3.0);
+    wind_.emplace(w, windJibHeight(model_));
+  }
+  wind_->setMeasured(v);
+  ++measured_version_;
+}
+
+// Rope and payload loads from the wind at the rope's mid-height and the payload's (the trolley
+// point less half and all of the hanging length); the structure's from its members, built at
+// unit gust (g = 1) for the current slewing angle and scaled by g(t)^2 (u is proportional to g).
+void SupportedRopeSimulation::updateWind(double t, bool record) {
+  if (!wind_) return;
+  const Eigen::VectorXd z =
+      state_.z.size() == support_->size() ? state_.z : Eigen::VectorXd::Zero(support_->size());
+  const double top = support_->point(z).z(), L = drives_.hoistLength();
+  const Scene& sc = model_.scene;
+  setRopeWind(ropeWindLoad(*wind_, t, top - 0.5 * L, sc.rope.falls,
+                           ropeDiameter(sc.rope.mass_per_length)),
+              payloadWindLoad(*wind_, t, top - L));
+  if (model_.structure && support_->size() > 0) {
+    const double theta = drives_.slewAngle();
+    if (wind_version_ != measured_version_ || theta != wind_theta_) {
+      // At unit gust: the load with g = 1 (the steady mean, or the measured wind).
+      support_->setExternalLoad(structureWindLoad(*model_.structure, *wind_, theta));
+      wind_theta_ = theta;
+      wind_version_ = measured_version_;
+    }
+    const double g = wind_->gustFactor(t);
+    support_->setExternalLoadScale(g * g);
+  }
+  if (record) wind_3s_ = wind_->recordJibSpeed(t);
+}
 
 void SupportedRopeSimulation::resetDrivesAndPose() {
   const Scene& sc = model_.scene;
   drives_.reset();
   support_->setPose(sc.slew_angle, sc.trolley_radius);
   support_->setSlewMotion(0.0, 0.0);
+  // A fresh 3 s history and no measurement: the scene's wind, or none.
+  if (sc.wind) {
+    wind_.emplace(*sc.wind, windJibHeight(model_));
+  } else {
+    wind_.reset();
+    setRopeWind(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+    support_->setExternalLoad(Eigen::VectorXd());
+  }
+  wind_version_ = -1;
+  wind_3s_ = 0.0;
+  updateWind(0.0);
 }
 
 void SupportedRopeSimulation::continueDrivesFrom(const SupportedRopeSimulation& o) {
   drives_.assignStateFrom(o.drives_);
   support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
   support_->setSlewMotion(drives_.slewRate(), drives_.slewAcceleration());
+  wind_ = o.wind_;
+  wind_3s_ = o.wind_3s_;
+  wind_version_ = -1;
+  ++measured_version_;
+  updateWind(o.state_.t, false);
 }
 
 bool SupportedRopeSimulation::advanceDrives(double t, double dt) {
-  if (!drives_.advance(t, dt)) return false;
+  const bool moved = drives_.advance(t, dt);
+  updateWind(t + dt);
+  if (!moved) return false;
   support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
   support_->setSlewMotion(drives_.slewRate(), drives_.slewAcceleration());
   return true;
@@ -136,6 +203,10 @@ SeriesValues SupportedRopeSimulation::seriesWith(const CoupledState& s,
   v.energy = energy;
   v.constraint_error = constraintError(*support_, s);
   setCraneWarnings(model_, drives_, v);
+  if (wind_) {
+    v.wind_3s = wind_3s_;
+    if (wind_3s_ > wind_->settings().in_service_limit) v.warnings |= kWindOverInServiceLimit;
+  }
   return v;
 }
 

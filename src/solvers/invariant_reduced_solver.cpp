@@ -103,6 +103,17 @@ void InvariantReducedSolver::setLength(double length) {
   for (int k = 0; k < m_; ++k) gravity_.segment<3>(3 * k) = Mrs_(k, 0) * rope_.gravity();
 }
 
+// F_r = B^T F = gravity_ + sum_k [L int psi_k dxi f + psi_k(1) F_end] (x) e_k: the rope's external
+// load per length f and end force F_end (AncfRope::setExternalLoad), int psi_k = mass_hat(k, 0).
+Eigen::VectorXd InvariantReducedSolver::appliedForce() const {
+  const Eigen::Vector3d& f = rope_.externalPerLength();
+  const Eigen::Vector3d& fe = rope_.externalEndForce();
+  if (f.isZero() && fe.isZero()) return gravity_;
+  Eigen::VectorXd F = gravity_;
+  for (int k = 0; k < m_; ++k) F.segment<3>(3 * k) += L_ * mass_hat_(k, 0) * f + psi_end_(k) * fe;
+  return F;
+}
+
 Eigen::VectorXd InvariantReducedSolver::massTimes(const Eigen::VectorXd& x) const {
   return kronTimes(Mrs_, x);
 }
@@ -214,7 +225,7 @@ void InvariantReducedSolver::initializeAccelerations(CoupledState& s) {
   factored_ = false;  // the step's weights differ
   if (support_.size() > 0) rz = -support_.internalForce(s.z, s.zd, s.zdd);
   Eigen::VectorXd rhs(n + 3);
-  rhs.head(n) = gravity_ - force(s.q, s.v);
+  rhs.head(n) = appliedForce() - force(s.q, s.v);
   rhs.tail<3>() = condenseSupport(support_, Eigen::Vector3d::Zero(), rz, Azr);
   const Eigen::VectorXd x = lu_.solve(rhs);
   storeConsistentAccelerations(support_, x.head(n), x.tail<3>(), Azr, s);
@@ -244,7 +255,7 @@ bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why
     }
     ++iterations;
     Eigen::VectorXd rhs(n + 3);
-    rhs.head(n) = -w.stiffness * (massTimes(x.qdd) + force(x.q, x.v) - gravity_);
+    rhs.head(n) = -w.stiffness * (massTimes(x.qdd) + force(x.q, x.v) - appliedForce());
     rhs.head<3>() -= w.stiffness * x.lambda;
     rhs.tail<3>() = rc;
     const Eigen::VectorXd dx = lu_.solve(rhs);
@@ -298,7 +309,7 @@ double InvariantReducedSolver::projectionError(const Eigen::VectorXd& q) const {
 }
 
 double InvariantReducedSolver::energy(const CoupledState& s) const {
-  return 0.5 * s.v.dot(massTimes(s.v)) + elasticEnergy(s.q) - gravity_.dot(s.q) +
+  return 0.5 * s.v.dot(massTimes(s.v)) + elasticEnergy(s.q) - appliedForce().dot(s.q) +
          support_.energy(s.z, s.zd);
 }
 

@@ -27,26 +27,29 @@ void PendulumSolver::setRopeDamping(double c) {
 CoupledState PendulumSolver::solveSwingEquilibrium(double swing_rad, double az_rad,
                                                    Eigen::Vector3d* holding_force) {
   const int m = support_.size();
-  const Eigen::Vector3d g = rope_.gravity();
-  const double gn = g.norm();
-  const double mu_l = rope_.massPerLength() * rope_.length();
-  const double endW = (rope_.endMass() + 0.5 * mu_l) * gn;  // weight the end point carries
-  const Eigen::Vector3d horiz(std::cos(az_rad), std::sin(az_rad), 0.0);
-  const Eigen::Vector3d u = swingDirection(swing_rad, az_rad);
-  const double H = std::tan(swing_rad) * endW;
-  const double T = endW / std::cos(swing_rad);
+  // The end point carries P, its share of the applied load (the end mass's and half the rope's
+  // weight, and the wind's, PendulumRope::gravityForce). At swing 0 the bar hangs along P;
+  // otherwise a horizontal holding force H turns it to u: P + H = T u with T = P_z / u_z.
+  const Vector6& F = rope_.gravityForce();
+  const Eigen::Vector3d P = F.tail<3>();
+  Eigen::Vector3d u = swingDirection(swing_rad, az_rad);
+  if (swing_rad == 0.0 && P.norm() > 0.0) u = P.normalized();
+  const double T = swing_rad == 0.0 ? P.norm() : P.z() / u.z();
+  const Eigen::Vector3d H = T * u - P;
   CoupledState s;
-  s.lambda = (0.5 * mu_l + rope_.topMass()) * g + T * u;
+  s.lambda = F.head<3>() + T * u;
   s.z = Eigen::VectorXd::Zero(m);
   if (m > 0) {
+    // K z = D^T lambda + f_z: the rope's pull and the loads on the structure itself (wind).
     support_.setIterationWeights(0.0, 0.0, 1.0);
-    s.z = support_.solvePointForce(s.lambda);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(m);
+    s.z = support_.solvePointForce(s.lambda) + support_.solve(-support_.internalForce(zero, zero, zero));
   }
   const double l = rope_.length() * (1.0 + T / rope_.axialStiffness());
   s.q = PendulumRope::straight(support_.point(s.z), u, l);
   s.v = s.qdd = s.a = Eigen::VectorXd::Zero(PendulumRope::kDofs);
   s.zd = s.zdd = s.za = Eigen::VectorXd::Zero(m);
-  if (holding_force) *holding_force = swing_rad == 0.0 ? Eigen::Vector3d::Zero() : Eigen::Vector3d(H * horiz);
+  if (holding_force) *holding_force = swing_rad == 0.0 ? Eigen::Vector3d::Zero() : H;
   return s;
 }
 

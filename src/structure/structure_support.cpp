@@ -105,6 +105,18 @@ double slewingInertia(const TowerCraneStructure& s, double point_mass, double ra
   return r.dot(s.M * r) + point_mass * radius * radius;
 }
 
+void StructureSupportBase::setExternalLoad(const Eigen::VectorXd& f) {
+  if (f.size() == 0) {
+    external_.resize(0);
+    return;
+  }
+  if (f.size() != structure_.free_dofs || !f.allFinite()) {
+    throw std::invalid_argument("external structure load: needs " +
+                                std::to_string(structure_.free_dofs) + " finite values");
+  }
+  external_ = modes_.size() > 0 ? Eigen::VectorXd(modes_.transpose() * f) : f;
+}
+
 // T^T f = -(theta'' T^T M r_theta + theta'^2 T^T M c).
 Eigen::VectorXd StructureSupportBase::slewingLoad() const {
   if (euler_.size() == 0) return Eigen::VectorXd::Zero(size());
@@ -141,6 +153,7 @@ Eigen::VectorXd ModalStructureSupport::internalForce(const Eigen::VectorXd& z,
                                                      const Eigen::VectorXd& zdd) const {
   Eigen::VectorXd f = zdd + damping_.cwiseProduct(zd) + omega2_.cwiseProduct(z);
   if (slewingLoads()) f -= slewingLoad();
+  if (external_.size() > 0) f -= external_scale_ * external_;
   return f;
 }
 
@@ -172,6 +185,7 @@ Eigen::VectorXd FullStructureSupport::internalForce(const Eigen::VectorXd& z,
                                                     const Eigen::VectorXd& zdd) const {
   Eigen::VectorXd f = M_ * (zdd + alpha_ * zd) + K_ * (z + beta_ * zd);
   if (slewingLoads()) f -= slewingLoad();
+  if (external_.size() > 0) f -= external_scale_ * external_;
   return f;
 }
 

@@ -4,6 +4,7 @@
 // command followed as the drive's limits say, the command timeout, pause and reset.
 #include <Eigen/Geometry>
 #include <diagnostic_msgs/DiagnosticArray.h>
+#include <geometry_msgs/Vector3Stamped.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
@@ -278,6 +279,49 @@ TEST(CraneSimNode, PauseHoldsAndResetRestarts) {
   EXPECT_LT(s.t, 2.0);
   EXPECT_NEAR(s.trolley_radius, 80.0, 1e-12);
   EXPECT_TRUE(finiteState(s));
+}
+
+TEST(CraneSimNode, WindFromTheTopicPushesTheLoadAndWarnsOverTheLimit) {
+  // After the reset above. Bad wind messages are refused and counted; then 25 m/s along the
+  // world's y at the jib (the node's crane/wind, an anemometer) for 3 s: the load drifts along
+  // +y, the 3 s mean climbs over the 20 m/s in-service limit and the diagnostics say so.
+  ros::NodeHandle nh;
+  ros::Publisher wind = nh.advertise<geometry_msgs::Vector3Stamped>("crane/wind", 10);
+  ASSERT_TRUE(waitFor([&wind] { return wind.getNumSubscribers() > 0; }, 10.0));
+  auto rejected = [] {
+    std::lock_guard<std::mutex> l(rec->m);
+    const std::string v = diagValue(rec->diag, "rejected_commands");
+    return v.empty() ? -1 : std::stoi(v);
+  };
+  ASSERT_TRUE(waitFor([&] { return rejected() >= 0; }, 5.0));
+  const int before = rejected();
+  geometry_msgs::Vector3Stamped m;
+  m.header.frame_id = "world";
+  m.vector.x = std::numeric_limits<double>::quiet_NaN();
+  wind.publish(m);
+  m.vector.x = 0.0;
+  m.vector.y = 25.0;
+  m.header.frame_id = "trolley";
+  wind.publish(m);
+  EXPECT_TRUE(waitFor([&] { return rejected() >= before + 2; }, 5.0)) << "bad winds not counted";
+  const crane_twin::CraneState s0 = latest();
+  m.header.frame_id = "world";
+  const ros::WallTime end = ros::WallTime::now() + ros::WallDuration(3.5);
+  while (ros::WallTime::now() < end) {
+    m.header.stamp = ros::Time::now();
+    wind.publish(m);
+    ros::WallDuration(0.1).sleep();
+  }
+  const crane_twin::CraneState s1 = latest();
+  EXPECT_GT(s1.payload.y - s0.payload.y, 0.1) << "the load did not drift with the wind";
+  EXPECT_TRUE(finiteState(s1));
+  EXPECT_TRUE(waitFor([] {
+    std::lock_guard<std::mutex> l(rec->m);
+    const std::string w = diagValue(rec->diag, "wind_3s");
+    return !w.empty() && std::stod(w) > 20.0 &&
+           diagValue(rec->diag, "warnings_seen_names").find("in-service limit") != std::string::npos;
+  }, 5.0)) << "diagnostics: wind_3s " << diagValue(rec->diag, "wind_3s") << ", warnings "
+           << diagValue(rec->diag, "warnings_seen_names");
 }
 
 int main(int argc, char** argv) {

@@ -29,6 +29,7 @@ struct BeamSection {
   double Iy = 0.0;           ///< second moment about local y (bending in the x-z plane)
   double Iz = 0.0;           ///< second moment about local z (bending in the x-y plane)
   double J = 0.0;            ///< torsion constant
+  double outer_diameter = 0.0;  ///< tube's D [m], the width the wind sees (0: no wind area)
 
   /// Thin-walled circular tube of outer diameter D and wall t (A_s = A/2, J = 2I).
   static BeamSection circularTube(double D, double t, double E, double G, double density);

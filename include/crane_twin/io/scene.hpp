@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "crane_twin/io/crane_description.hpp"
+#include "crane_twin/loads/wind_field.hpp"
 
 namespace crane_twin {
 
@@ -75,6 +76,8 @@ struct Scene {
   double swing_azimuth_deg = 0.0;
   Eigen::Vector3d payload_velocity = Eigen::Vector3d::Zero();
   double gravity = 9.81;
+  /// `wind:` (docs/scenes.md; empty: no wind, until a measured wind arrives at the node).
+  std::optional<WindSettings> wind;
   std::vector<CommandEntry> commands;
   /// Where the crane stands on a site (docs/site.md): the mast foot [m] and the yaw about z
   /// [deg] of the crane's frame in the site frame. Places the ROS frames and the clearance

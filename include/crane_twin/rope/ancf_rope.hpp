@@ -36,7 +36,14 @@ class AncfRope {
   /// `rope.tension_only` (docs/scenes.md): no axial force in compression (AncfCableProperties).
   void setTensionOnly(bool on) { element_.tension_only = on; }
   const SparseMatrix& massMatrix() const { return M_; }
+  /// The applied load vector: gravity F_g = M g_field plus the external loads below.
   const Eigen::VectorXd& gravityForce() const { return Fg_; }
+  /// External loads (wind, docs/model.md "Wind"): a force per unit length [N/m], uniform along
+  /// the rope, and a force on the end node [N]; added to gravityForce() as
+  /// int S^T f dx (per element [l/2 f, l^2/12 f, l/2 f, -l^2/12 f]) and at r_n.
+  void setExternalLoad(const Eigen::Vector3d& per_length, const Eigen::Vector3d& end_force);
+  const Eigen::Vector3d& externalPerLength() const { return ext_per_length_; }
+  const Eigen::Vector3d& externalEndForce() const { return ext_end_; }
 
   /// Hoisting by uniform rescaling (docs/model.md): every element's reference length becomes
   /// length / elements; M and F_g are updated in place (rope mass mu L exactly, same pattern). Throws
@@ -77,6 +84,7 @@ class AncfRope {
   Eigen::Vector3d gravity_;
   SparseMatrix M_;
   Eigen::VectorXd Fg_;
+  Eigen::Vector3d ext_per_length_ = Eigen::Vector3d::Zero(), ext_end_ = Eigen::Vector3d::Zero();
   std::vector<double> unit_mass_, point_mass_;  ///< per entry of M_ (setLength)
   std::vector<int> mass_exponent_;              ///< s_i + s_j per entry (0: l, 1: l^2, 2: l^3)
   void assembleMass();

@@ -47,7 +47,10 @@ class PendulumRope {
   void setTensionOnly(bool on) { tension_only_ = on; }
   bool tensionOnly() const { return tension_only_; }
   const Matrix6& massMatrix() const { return M_; }
+  /// The applied load: gravity M [g; g] plus the external loads (half the rope's at each end).
   const Vector6& gravityForce() const { return Fg_; }
+  /// External loads (wind): a force per unit length of rope [N/m] and one at the end [N].
+  void setExternalLoad(const Eigen::Vector3d& per_length, const Eigen::Vector3d& end_force);
 
   /// Hoisting: the unstretched length becomes `length`, M and F_g are rebuilt (rope mass
   /// mu L exactly); the geometry q is kept. Throws std::invalid_argument for length <= 0.
@@ -70,6 +73,8 @@ class PendulumRope {
   Eigen::Vector3d g_;
   Matrix6 M_;
   Vector6 Fg_;
+  Eigen::Vector3d ext_per_length_ = Eigen::Vector3d::Zero(), ext_end_ = Eigen::Vector3d::Zero();
+  void updateLoad();
 };
 
 }  // namespace crane_twin

@@ -51,6 +51,13 @@ class RopeSupport {
   /// the inertial loads of slewing on the structure (docs/model.md, `slewing.inertial_loads`;
   /// StructureSupportBase). No effect on a support without structural coordinates.
   virtual void setSlewMotion(double /*rate*/, double /*acceleration*/) {}
+  /// External load on the structure (wind, docs/model.md "Wind"): forces and moments on the
+  /// structure's free DOFs, slewing frame [N, N m]; it enters f_z of internalForce. No effect
+  /// on a support without structural coordinates (a rigid structure does not deform).
+  virtual void setExternalLoad(const Eigen::VectorXd& /*free_dof_force*/) {}
+  /// Scale s of that load (the gust: s = g(t)^2), so a load that only changes in size is not
+  /// projected again.
+  virtual void setExternalLoadScale(double /*s*/) {}
   /// Displacement of the cab and jib-tip reference points from the undeformed structure,
   /// slewing frame [m] (docs/cli.md cab_d*, jib_tip_d*); zero for an anchor.
   virtual Eigen::Vector3d cabDisplacement(const Eigen::VectorXd& z) const = 0;

@@ -37,6 +37,9 @@ class CraneSimulation final : public SupportedRopeSimulation {
   const AncfRope& rope() const { return *rope_; }
   const FullOrderSolver& solver() const { return *solver_; }
   double ropeLength() const override { return rope_->length(); }
+  void setRopeWind(const Eigen::Vector3d& per_length, const Eigen::Vector3d& end_force) override {
+    rope_->setExternalLoad(per_length, end_force);
+  }
 
   /// The step once the drives have advanced (advanceDrives): the rope to the hoist length, one
   /// solver step.

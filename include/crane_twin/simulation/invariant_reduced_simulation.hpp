@@ -48,6 +48,8 @@ class InvariantReducedSimulation final : public Simulation {
   void initialize() override;
   void step() override;
   void setCommand(const CommandEntry& command) override { full_.setCommand(command); }
+  /// The wind acts through the full model's rope loads, which the reduced solver projects.
+  void setMeasuredWind(const Eigen::Vector3d& v) override { full_.setMeasuredWind(v); }
   double time() const override { return full_order_ ? full_.time() : state_.t; }
   SeriesValues series() const override;
   void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab, Eigen::Vector3d& jib_tip) const override;

@@ -38,6 +38,9 @@ class PendulumCraneSimulation final : public SupportedRopeSimulation {
   double topTensionOf(const CoupledState& s) const override { return solver_->topTension(s); }
   double energyOf(const CoupledState& s) const override { return solver_->energy(s); }
   double ropeLength() const override { return rope_->length(); }
+  void setRopeWind(const Eigen::Vector3d& per_length, const Eigen::Vector3d& end_force) override {
+    rope_->setExternalLoad(per_length, end_force);
+  }
 
  private:
   std::unique_ptr<PendulumRope> rope_;

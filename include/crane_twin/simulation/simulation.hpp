@@ -27,6 +27,7 @@ struct SeriesValues {
   int subdomains = 0;
   // Beyond the columns of the paper scenes: the physical warnings a crane engineer expects.
   double tension_ratio = 0.0;     ///< rope top tension / breaking force of all falls
+  double wind_3s = 0.0;           ///< 3 s mean wind speed at the jib's height [m/s] (0: none)
   double load_chart_ratio = 0.0;  ///< payload / allowed load at the current radius (0: no crane)
   int warnings = 0;               ///< bit set of Warning
   long full_order_steps = 0;      ///< reduced rope: steps integrated at full order so far
@@ -40,7 +41,8 @@ enum Warning : int {
   kTrolleyAtLimit = 8,            ///< the trolley is braking for or holding at a radius limit
   kCommandLimited = 16,           ///< a command above a drive's speed limit was limited
   kTensionOverWorkingLoadLimit = 32,  ///< tension_ratio > 1 / rope.safety_factor
-  kLastWarning = kTensionOverWorkingLoadLimit,
+  kWindOverInServiceLimit = 64,   ///< 3 s mean wind at the jib's height above wind.in_service_limit
+  kLastWarning = kWindOverInServiceLimit,
 };
 /// Human-readable name of one warning bit.
 const char* warningName(int bit);
@@ -67,6 +69,10 @@ class Simulation {
   /// docs/model.md "Drives"). Throws std::invalid_argument for a non-finite value and InputError
   /// for what is not built; the state is unchanged then.
   virtual void setCommand(const CommandEntry& command) = 0;
+  /// A measured wind at the jib's height [m/s, crane frame; its horizontal part] from now on,
+  /// replacing the scene's wind (docs/model.md "Wind"; the node's crane/wind). Throws
+  /// std::invalid_argument for a non-finite value and InputError where the model takes no wind.
+  virtual void setMeasuredWind(const Eigen::Vector3d& velocity);
   /// The state in the rope model's own full coordinates (ANCF q, or the pendulum's two points;
   /// the reduced model expands its own: O(n r)) and the support's coordinates z.
   virtual CoupledState fullState() const = 0;

@@ -8,8 +8,10 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 
 #include "crane_twin/drives/crane_drives.hpp"
+#include "crane_twin/loads/wind_field.hpp"
 #include "crane_twin/integrators/coupled_state.hpp"
 #include "crane_twin/rope/rope_support.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
@@ -26,6 +28,9 @@ class SupportedRopeSimulation : public Simulation {
   CoupledState fullState() const override { return state_; }
   /// Operator command from now on, overriding the scene's schedule (CraneDrives::setCommand).
   void setCommand(const CommandEntry& command) override { drives_.setCommand(command); }
+  void setMeasuredWind(const Eigen::Vector3d& velocity) override;
+  /// The wind (empty without `wind:` and before a measured wind).
+  const std::optional<WindField>& wind() const { return wind_; }
   const CraneDrives& drives() const override { return drives_; }
   const RopeSupport& support() const override { return *support_; }
   RopeSupport& support() { return *support_; }
@@ -71,11 +76,21 @@ class SupportedRopeSimulation : public Simulation {
   virtual double topTensionOf(const CoupledState& s) const = 0;
   virtual double energyOf(const CoupledState& s) const = 0;
   virtual double ropeLength() const = 0;
+  /// The rope's wind loads: per metre [N/m] and on the end point [N], crane frame.
+  virtual void setRopeWind(const Eigen::Vector3d& per_length, const Eigen::Vector3d& end_force) = 0;
+  /// Wind loads at time t on the rope, the payload and the structure (docs/model.md "Wind"),
+  /// and (record) the 3 s mean at the jib's height. No effect without wind.
+  void updateWind(double t, bool record = true);
 
   const CraneModel model_;  ///< own copy: callers may pass a temporary
   CraneDrives drives_;
   std::unique_ptr<RopeSupport> support_;
   CoupledState state_;
+  std::optional<WindField> wind_;
+  double wind_3s_ = 0.0;
+  double wind_theta_ = 0.0;  ///< slewing angle of the structure's unit wind load
+  long wind_version_ = -1;   ///< measured-wind version of that load (-1: none built)
+  long measured_version_ = 0;
 };
 
 /// The rope's support for a scene: FixedAnchor (crane: none: the anchor), RigidTrolleySupport

@@ -87,6 +87,7 @@ class InvariantReducedSolver {
   double energy(const CoupledState& s) const;
   double topTension(const CoupledState& s) const;
   /// M_r x for a reduced vector x.
+  Eigen::VectorXd appliedForce() const;
   Eigen::VectorXd massTimes(const Eigen::VectorXd& x) const;
   const Eigen::VectorXd& gravityForce() const { return gravity_; }
   Eigen::Vector3d nodePosition(const Eigen::VectorXd& y, int j) const {

@@ -49,6 +49,11 @@ class StructureSupportBase : public RopeSupport {
   bool slewingLoads() const { return euler_.size() > 0; }
   /// The d'Alembert load of slewing in the support's coordinates, T^T f (zero when off).
   Eigen::VectorXd slewingLoad() const;
+  /// T^T f of an external free-DOF load f (an empty f removes it).
+  void setExternalLoad(const Eigen::VectorXd& free_dof_force) override;
+  void setExternalLoadScale(double s) override { external_scale_ = s; }
+  /// The external load in the support's coordinates (empty when none).
+  const Eigen::VectorXd& externalLoad() const { return external_; }
   Eigen::Vector3d point(const Eigen::VectorXd& z) const override { return r0_ + D_ * z; }
   Eigen::Vector3d pointMotion(const Eigen::VectorXd& dz) const override { return D_ * dz; }
   Eigen::VectorXd pointForceToCoordinates(const Eigen::Vector3d& f) const override {
@@ -76,6 +81,8 @@ class StructureSupportBase : public RopeSupport {
   Eigen::Vector3d r0_;
   Eigen::Matrix<double, 3, Eigen::Dynamic> D_, cab_, tip_;
   Eigen::VectorXd euler_, centrifugal_;  ///< T^T M r_theta, T^T M c (empty: loads off)
+  Eigen::VectorXd external_;  ///< T^T f of the external load (empty: none)
+  double external_scale_ = 1.0;
   double slew_rate_ = 0.0, slew_acceleration_ = 0.0;
 };
 

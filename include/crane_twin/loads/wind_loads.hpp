@@ -1,0 +1,42 @@
+// Quasi-static wind loads (docs/model.md "Wind"): the drag q Cd A with q = 0.5 rho |u_n| u_n of
+// the wind component u_n normal to a member, on
+//   - the structure's tube members: Cd = 1.2 (kTubeDragCoefficient) on the outer diameter D,
+//     f = 0.5 rho Cd D |u_n| u_n per metre at the member's mid-height, half of f L to each end
+//     node (no shielding of one member by another: conservative for a lattice);
+//   - the hanging rope: n falls side by side, each of diameter d = sqrt(mu / 0.0040) mm (mu the
+//     mass per metre of one fall: 0.0040 kg/m per mm^2 for steel wire rope), at the rope's
+//     mid-height, uniform along it (the rope is near vertical: the horizontal wind is normal);
+//   - the payload: Cd A at the payload's height.
+#pragma once
+
+#include <Eigen/Dense>
+#include <cmath>
+
+#include "crane_twin/loads/wind_field.hpp"
+#include "crane_twin/structure/tower_crane_structure.hpp"
+
+namespace crane_twin {
+
+constexpr double kTubeDragCoefficient = 1.2;
+constexpr double kRopeMassPerSquareMillimetre = 0.0040;  ///< [kg/m per mm^2]
+
+/// Diameter of one fall of steel wire rope from its mass per metre [m].
+inline double ropeDiameter(double mass_per_length_per_fall) {
+  return 1e-3 * std::sqrt(mass_per_length_per_fall / kRopeMassPerSquareMillimetre);
+}
+
+/// Free-DOF forces of the wind on the structure's tube members at unit gust factor (the mean
+/// wind, or the measured one: WindField::meanVelocity), slewing frame, for slewing angle theta
+/// (the wind turned by R(theta)^T into the slewing frame) [N]. At time t the load is
+/// g(t)^2 times this (the gust is coherent: u(z, t) = g(t) u_mean(z)).
+Eigen::VectorXd structureWindLoad(const TowerCraneStructure& s, const WindField& w, double theta);
+
+/// Wind force per metre on the hanging rope (falls of diameter d, drag coefficient of the
+/// settings) with its mid-point at height z [N/m], crane frame.
+Eigen::Vector3d ropeWindLoad(const WindField& w, double t, double z_mid, int falls,
+                             double fall_diameter);
+
+/// Wind force on the payload at height z [N], crane frame.
+Eigen::Vector3d payloadWindLoad(const WindField& w, double t, double z);
+
+}  // namespace crane_twin
