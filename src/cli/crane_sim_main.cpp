@@ -72,6 +72,11 @@ int runInfo(const SceneArgs& a) {
   std::printf("structural_damping_ratio,%g\n",
               m.structure && sc.structure_model != "rigid" ? sc.structure_damping_ratio : 0.0);
   std::printf("slewing_inertial_loads,%s\n", sc.slew_inertial_loads ? "on" : "off");
+  std::printf("slewing_drive,%s\n", sc.slew_drive.model.c_str());
+  std::printf("rope_tension_only,%s\n", sc.rope.tension_only ? "on" : "off");
+  std::printf("rope_safety_factor,%g\n", sc.rope.safety_factor);
+  std::printf("structure_geometric_stiffness,%s\n", sc.structure_geometric_stiffness ? "on" : "off");
+  std::printf("wind,%s\n", sc.wind ? "on" : "off");
   std::printf("command_entries,%zu\n", sc.commands.size());
   if (m.structure) {
     std::printf("structure_member_mass,%.1f\n", m.structure->memberMass());

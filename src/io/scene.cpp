@@ -77,7 +77,11 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     s.structure_model = n.string("model", s.crane ? "modal" : "rigid", {"rigid", "modal", "full"});
     s.structure_modes = n.integer("modes", 100, 1, 100000);
     s.structure_damping_ratio = n.number("damping_ratio", 0.01, Bounds::closed(0.0, 1.0));
+    s.structure_geometric_stiffness = n.boolean("geometric_stiffness", false);
     n.finish();
+    if (s.structure_geometric_stiffness && s.structure_model == "rigid") {
+      n.fail("geometric_stiffness", "acts on a flexible structure (structure.model: modal or full)");
+    }
     if (!s.crane && s.structure_model != "rigid") {
       root.fail("structure.model", "must be rigid with crane: none");
     }

@@ -1,6 +1,29 @@
 #include "crane_twin/simulation/crane_model.hpp"
 
+#include <Eigen/SparseCholesky>
+
+#include "crane_twin/io/input_error.hpp"
+#include "crane_twin/structure/geometric_stiffness.hpp"
+
 namespace crane_twin {
+
+// P-delta (docs/model.md "Geometric stiffness"): K + K_G(N), N the members' axial forces under
+// the self-weight and the static hanging load (end mass, hanging rope, trolley) at the scene's
+// trolley radius. Refused when the structure buckles under it (K + K_G not positive definite).
+void addGeometricStiffness(CraneModel& m) {
+  TowerCraneStructure& st = *m.structure;
+  const double g = m.scene.gravity;
+  const double hanging = m.end_mass + m.ropeMass() + m.trolleyMass();
+  const Eigen::VectorXd f = selfWeightLoad(st, g) +
+      st.pointForce(st.trolleyWeights(m.scene.trolley_radius), Eigen::Vector3d(0.0, 0.0, -hanging * g));
+  m.structure_axial_forces = memberAxialForces(st, staticDisplacement(st, f));
+  st.K = st.K + geometricStiffness(st, m.structure_axial_forces);
+  Eigen::SimplicialLLT<SparseMatrix> llt(st.K);
+  if (llt.info() != Eigen::Success) {
+    throw InputError(m.scene.file + ": key 'structure.geometric_stiffness': the structure buckles "
+                     "under its own weight and the hanging load (K + K_G is not positive definite)");
+  }
+}
 
 CraneModel buildCraneModel(const Scene& scene) {
   CraneModel m;
@@ -13,6 +36,7 @@ CraneModel buildCraneModel(const Scene& scene) {
   m.rope.bending_stiffness = scene.rope.bending ? n * scene.rope.bending_stiffness : 0.0;
   m.rope.breaking_force = n * scene.rope.breaking_force;
   m.end_mass = scene.payload_mass + scene.hookBlockMass();
+  if (scene.structure_geometric_stiffness) addGeometricStiffness(m);
   return m;
 }
 

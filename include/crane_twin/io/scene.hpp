@@ -65,6 +65,7 @@ struct Scene {
   std::string structure_model = "modal";  ///< rigid | modal | full
   int structure_modes = 100;
   double structure_damping_ratio = 0.01;
+  bool structure_geometric_stiffness = false;  ///< P-delta under self-weight (docs/model.md)
   RopeSettings rope;
   double payload_mass = 3600.0;
   double trolley_radius = 80.0;

@@ -26,6 +26,9 @@ struct CraneModel {
   std::optional<TowerCraneStructure> structure;  ///< built unless crane: none
   EquivalentRope rope;
   double end_mass = 0.0;  ///< payload + hook block at the rope end [kg]
+  /// With structure.geometric_stiffness: each member's axial force under the self-weight and
+  /// the static hanging load [N] (tension positive); structure->K then holds K + K_G.
+  Eigen::VectorXd structure_axial_forces;
 
   /// Rope DOF count of the ANCF discretisation: 6 per node.
   int ropeDofs() const { return 6 * (scene.rope.elements + 1); }
