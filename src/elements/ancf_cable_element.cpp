@@ -236,7 +236,7 @@ void ancfAxialDampingForce(const AncfCableProperties& p, double c, const Vector1
     const double w = gr.w(q) * l;
     const Eigen::Vector4d sx = ancfShapeDx(gr.x(q), l);
     const Eigen::Vector3d a = combine(sx, e);
-    if (p.tension_only && a.norm() - 1.0 <= -kSlackBand) continue;  // slack: no damper force
+    if (ancfAxialSlack(a.norm(), p.tension_only)) continue;  // slack: no damper force
     const Eigen::Vector3d t = a.normalized();
     const double epsDot = t.dot(combine(sx, edot));
     addVec(sx, cEA * epsDot * t, w, Q);

@@ -190,8 +190,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     {
       // Default area: the payload drawn as a cube of 1000 kg/m^3 (docs/ros.md markers).
       ConfigNode p = n.map("payload");
-      w.payload_area = p.number("area", std::pow(s.payload_mass / 1000.0, 2.0 / 3.0),
-                                Bounds::nonNegative());
+      w.payload_area = p.number("area", payloadCubeFaceArea(s.payload_mass), Bounds::nonNegative());
       w.payload_drag_coefficient = p.number("drag_coefficient", 1.05, Bounds::closed(0.0, 5.0));
       p.finish();
     }

@@ -86,11 +86,10 @@ double WindField::gustFactor(double t) const {
 
 Eigen::Vector3d WindField::meanVelocity(double z) const {
   if (measured_) {
-    const double uj = meanSpeed(jib_height_);
-    // The profile's shape relative to the jib (1 everywhere when the scene's speed is 0).
-    const double shape = s_.speed > 0.0 && uj > 0.0 ? meanSpeed(z) / uj
-                         : s_.profile_exponent == 0.0 ? 1.0
-                         : std::pow(std::max(z, 0.0) / jib_height_, s_.profile_exponent);
+    // The profile's shape relative to the jib: U(z) / U(z_jib) = (z / z_jib)^alpha.
+    const double shape = s_.profile_exponent == 0.0
+                             ? 1.0
+                             : std::pow(std::max(z, 0.0) / jib_height_, s_.profile_exponent);
     return shape * *measured_;
   }
   return meanSpeed(z) * e_;

@@ -54,7 +54,7 @@ void PendulumRope::setExternalLoad(const Eigen::Vector3d& per_length, const Eige
 
 double PendulumRope::tension(const Vector6& q) const {
   const double l = (q.tail<3>() - q.head<3>()).norm();
-  return l > L_ || !tension_only_ ? EA_ * (l - L_) / L_ : 0.0;
+  return slack(l) ? 0.0 : EA_ * (l - L_) / L_;
 }
 
 void PendulumRope::elasticForce(const Vector6& q, Vector6& Q, Matrix6* K) const {
@@ -62,7 +62,7 @@ void PendulumRope::elasticForce(const Vector6& q, Vector6& Q, Matrix6* K) const 
   const double l = d.norm();
   Q.setZero();
   if (K) K->setZero();
-  if (!(l > 0.0) || (tension_only_ && !(l > L_))) return;  // slack: no force, no stiffness
+  if (!(l > 0.0) || slack(l)) return;  // no force, no stiffness
   const Eigen::Vector3d u = d / l;
   const double T = EA_ * (l - L_) / L_;
   Q.head<3>() = -T * u;
@@ -82,7 +82,7 @@ void PendulumRope::dampingForce(double c, const Vector6& q, const Vector6& v, Ve
   const double l = d.norm();
   Q.setZero();
   if (C) C->setZero();
-  if (c == 0.0 || !(l > 0.0) || (tension_only_ && !(l > L_))) return;
+  if (c == 0.0 || !(l > 0.0) || slack(l)) return;
   const Eigen::Vector3d u = d / l;
   const double k = c * EA_ / L_;
   const double Td = k * u.dot(v.tail<3>() - v.head<3>());
@@ -98,7 +98,7 @@ void PendulumRope::dampingForce(double c, const Vector6& q, const Vector6& v, Ve
 
 double PendulumRope::elasticEnergy(const Vector6& q) const {
   const double l = (q.tail<3>() - q.head<3>()).norm();
-  return l > L_ || !tension_only_ ? 0.5 * EA_ / L_ * (l - L_) * (l - L_) : 0.0;
+  return slack(l) ? 0.0 : 0.5 * EA_ / L_ * (l - L_) * (l - L_);
 }
 
 Vector6 PendulumRope::straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d, double l) {

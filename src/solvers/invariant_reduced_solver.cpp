@@ -143,7 +143,7 @@ Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
     a *= c1;
     b *= c2;
     ancfCablePoint(EA, EI, a, b, false, d, tension_only);
-    if (damped && !(tension_only && a.norm() - 1.0 <= -kSlackBand)) {
+    if (damped && !ancfAxialSlack(a.norm(), tension_only)) {
       Eigen::Vector3d ad = Eigen::Vector3d::Zero();
       for (int k = 0; k < m_; ++k) ad += d1[k] * Eigen::Map<const Eigen::Vector3d>(Ad + 3 * k);
       const Eigen::Vector3d t = a.normalized();
@@ -240,6 +240,7 @@ void InvariantReducedSolver::step(CoupledState& s) {
 bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why) {
   const int n = 3 * m_;
   int iterations = 0;
+  const Eigen::VectorXd applied = appliedForce();  // constant over the step
   const RopeIncrement increment = [&](const CoupledState& x, const NewtonWeights& w,
                                       const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
                                       Eigen::Vector3d& dmu, std::string& reason) {
@@ -255,7 +256,7 @@ bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why
     }
     ++iterations;
     Eigen::VectorXd rhs(n + 3);
-    rhs.head(n) = -w.stiffness * (massTimes(x.qdd) + force(x.q, x.v) - appliedForce());
+    rhs.head(n) = -w.stiffness * (massTimes(x.qdd) + force(x.q, x.v) - applied);
     rhs.head<3>() -= w.stiffness * x.lambda;
     rhs.tail<3>() = rc;
     const Eigen::VectorXd dx = lu_.solve(rhs);

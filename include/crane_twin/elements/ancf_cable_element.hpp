@@ -52,6 +52,11 @@ constexpr double kSlackBand = 1e-5;
 /// tension-only law of docs/model.md), and the energy density psi(eps) = int N [J/m].
 void ancfAxialLaw(double EA, double eps, bool tension_only, double& N, double& dN);
 double ancfAxialEnergy(double EA, double eps, bool tension_only);
+/// A tension-only point with stretch g = |r_x| is slack (no axial force, no axial damping):
+/// g - 1 <= -kSlackBand.
+inline bool ancfAxialSlack(double g, bool tension_only) {
+  return tension_only && g - 1.0 <= -kSlackBand;
+}
 
 /// Position r(xi) = S(xi) e.
 Eigen::Vector3d ancfPosition(const Vector12& e, double xi, double l);

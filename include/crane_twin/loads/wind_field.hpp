@@ -17,6 +17,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <cmath>
 #include <deque>
 #include <optional>
 #include <utility>
@@ -81,6 +82,10 @@ class WindField {
   std::deque<std::pair<double, double>> recent_;  ///< (t, speed at the jib)
   double recent_sum_ = 0.0;
 };
+
+/// Default projected area of a payload of mass m [kg]: the face of the cube of 1000 kg/m^3 the
+/// markers draw (analysis/load_shapes), (m / 1000)^(2/3) [m^2].
+inline double payloadCubeFaceArea(double mass) { return std::pow(mass / 1000.0, 2.0 / 3.0); }
 
 /// Quasi-static drag force 0.5 rho Cd A |u| u [N] of an area A [m^2] in the wind u [m/s].
 inline Eigen::Vector3d dragForce(double cd_area, const Eigen::Vector3d& u) {

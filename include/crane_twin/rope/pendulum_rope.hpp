@@ -75,6 +75,8 @@ class PendulumRope {
   Vector6 Fg_;
   Eigen::Vector3d ext_per_length_ = Eigen::Vector3d::Zero(), ext_end_ = Eigen::Vector3d::Zero();
   void updateLoad();
+  /// Slack at chord length l: no force, no stiffness, no damping (tension-only and l <= L).
+  bool slack(double l) const { return tension_only_ && !(l > L_); }
 };
 
 }  // namespace crane_twin
