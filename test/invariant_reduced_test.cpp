@@ -334,7 +334,7 @@ TEST(InvariantReduced, OutputRowFromTheReducedStateMatchesTheExpandedRope) {
                              {"rope.elements=30", "structure.model=rigid", "time_step=0.002",
                               "rope.model=full", "commands=[{t: 0, hoist_speed: -1.0}]"}));
   full.initialize();
-  for (int k = 0; k < 1500; ++k) full.advanceDrives(0.002 * k, 0.002);  // the same drive steps
+  for (int k = 0; k < 1500; ++k) full.advanceDrives(0.002 * k, 0.002, full.fullState().z);  // the same drive steps
   ASSERT_NEAR(full.drives().hoistLength(), r.rope_length, 1e-9);
   full.followHoistLength();
   const SeriesValues f = full.seriesOf(sim.fullState());

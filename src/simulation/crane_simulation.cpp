@@ -104,7 +104,7 @@ CoupledState CraneSimulation::initialState() {
 void CraneSimulation::initialize() { state_ = initialState(); }
 
 void CraneSimulation::step() {
-  advanceDrives(state_.t, solver_->timeStep());
+  advanceDrives(state_.t, solver_->timeStep(), state_.z);
   stepAfterDrives();
 }
 

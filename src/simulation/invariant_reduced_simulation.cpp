@@ -225,7 +225,7 @@ void InvariantReducedSimulation::step() {
     return;
   }
   const double h = full_.model().scene.time_step;
-  full_.advanceDrives(state_.t, h);
+  full_.advanceDrives(state_.t, h, state_.z);
   // Hoisting keeps y (header); the full rope follows only when it is needed (syncFullRope).
   const double to = full_.hoistTargetLength();
   if (to != solver_->length()) solver_->setLength(to);

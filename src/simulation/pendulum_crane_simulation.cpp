@@ -34,7 +34,7 @@ void PendulumCraneSimulation::initialize() {
 }
 
 void PendulumCraneSimulation::step() {
-  if (advanceDrives(state_.t, solver_->timeStep()) && drives_.hoistLength() != rope_->length()) {
+  if (advanceDrives(state_.t, solver_->timeStep(), state_.z) && drives_.hoistLength() != rope_->length()) {
     rope_->setLength(drives_.hoistLength());
   }
   solver_->step(state_);

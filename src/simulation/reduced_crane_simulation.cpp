@@ -100,7 +100,7 @@ void ReducedCraneSimulation::step() {
     }
     return;
   }
-  full_.advanceDrives(solver_->state().t, full_.solver().timeStep());
+  full_.advanceDrives(solver_->state().t, full_.solver().timeStep(), solver_->state().z);
   const double length = full_.drives().hoistLength(), from = full_.ropeLength();
   if (length != from && std::abs(length - from) > kHoistStepStrain * end_strain_ * from) {
     // A length change per step that is not small against the rope's static stretch: the

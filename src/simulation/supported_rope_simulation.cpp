@@ -77,32 +77,32 @@ void SupportedRopeSimulation::setMeasuredWind(const Eigen::Vector3d& v) {
       throw InputError(model_.scene.file + ": a measured wind needs the anchor above the ground");
     }
     WindSettings w;
-    w.payload_area = std::pow(model_.scene.payload_mass / 1000.0, 2.0 / 3.0);
+    w.payload_area = payloadCubeFaceArea(model_.scene.payload_mass);
     wind_.emplace(w, windJibHeight(model_));
   }
   wind_->setMeasured(v);
-  ++measured_version_;
+  structure_wind_stale_ = true;
 }
 
 // Rope and payload loads from the wind at the rope's mid-height and the payload's (the trolley
 // point less half and all of the hanging length); the structure's from its members, built at
 // unit gust (g = 1) for the current slewing angle and scaled by g(t)^2 (u is proportional to g).
-void SupportedRopeSimulation::updateWind(double t, bool record) {
+void SupportedRopeSimulation::updateWind(double t, const Eigen::VectorXd& z, bool record) {
   if (!wind_) return;
-  const Eigen::VectorXd z =
-      state_.z.size() == support_->size() ? state_.z : Eigen::VectorXd::Zero(support_->size());
-  const double top = support_->point(z).z(), L = drives_.hoistLength();
+  const double top =
+      (z.size() == support_->size() ? support_->point(z) : support_->point(Eigen::VectorXd::Zero(support_->size()))).z();
+  const double L = drives_.hoistLength();
   const Scene& sc = model_.scene;
   setRopeWind(ropeWindLoad(*wind_, t, top - 0.5 * L, sc.rope.falls,
                            ropeDiameter(sc.rope.mass_per_length)),
               payloadWindLoad(*wind_, t, top - L));
   if (model_.structure && support_->size() > 0) {
     const double theta = drives_.slewAngle();
-    if (wind_version_ != measured_version_ || theta != wind_theta_) {
+    if (structure_wind_stale_ || theta != wind_theta_) {
       // At unit gust: the load with g = 1 (the steady mean, or the measured wind).
       support_->setExternalLoad(structureWindLoad(*model_.structure, *wind_, theta));
       wind_theta_ = theta;
-      wind_version_ = measured_version_;
+      structure_wind_stale_ = false;
     }
     const double g = wind_->gustFactor(t);
     support_->setExternalLoadScale(g * g);
@@ -123,9 +123,9 @@ void SupportedRopeSimulation::resetDrivesAndPose() {
     setRopeWind(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
     support_->setExternalLoad(Eigen::VectorXd());
   }
-  wind_version_ = -1;
+  structure_wind_stale_ = true;
   wind_3s_ = 0.0;
-  updateWind(0.0);
+  updateWind(0.0, Eigen::VectorXd());
 }
 
 void SupportedRopeSimulation::continueDrivesFrom(const SupportedRopeSimulation& o) {
@@ -134,14 +134,13 @@ void SupportedRopeSimulation::continueDrivesFrom(const SupportedRopeSimulation& 
   support_->setSlewMotion(drives_.slewRate(), drives_.slewAcceleration());
   wind_ = o.wind_;
   wind_3s_ = o.wind_3s_;
-  wind_version_ = -1;
-  ++measured_version_;
-  updateWind(o.state_.t, false);
+  structure_wind_stale_ = true;
+  updateWind(o.state_.t, o.state_.z, false);
 }
 
-bool SupportedRopeSimulation::advanceDrives(double t, double dt) {
+bool SupportedRopeSimulation::advanceDrives(double t, double dt, const Eigen::VectorXd& z) {
   const bool moved = drives_.advance(t, dt);
-  updateWind(t + dt);
+  updateWind(t + dt, z);
   if (!moved) return false;
   support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
   support_->setSlewMotion(drives_.slewRate(), drives_.slewAcceleration());

@@ -46,8 +46,9 @@ class SupportedRopeSimulation : public Simulation {
                           const Eigen::Vector3d& payload_velocity, double tension, double energy,
                           double rope_length) const;
   /// Advance the drives by dt under the active command and move the support to their pose;
-  /// false where nothing moved.
-  bool advanceDrives(double t, double dt);
+  /// false where nothing moved. z: the support's coordinates now (the caller's state: a reduced
+  /// run integrates its own, not this run's state_), where the wind is taken.
+  bool advanceDrives(double t, double dt, const Eigen::VectorXd& z);
   /// Static equilibrium of the scene (`initial.mode: equilibrium`: the chord at
   /// `initial.swing_deg`, azimuth `initial.swing_azimuth_deg`), the horizontal force on the end
   /// mass that holds it into *holding_force.
@@ -79,8 +80,9 @@ class SupportedRopeSimulation : public Simulation {
   /// The rope's wind loads: per metre [N/m] and on the end point [N], crane frame.
   virtual void setRopeWind(const Eigen::Vector3d& per_length, const Eigen::Vector3d& end_force) = 0;
   /// Wind loads at time t on the rope, the payload and the structure (docs/model.md "Wind"),
-  /// and (record) the 3 s mean at the jib's height. No effect without wind.
-  void updateWind(double t, bool record = true);
+  /// with the support at coordinates z (empty: at rest), and (record) the 3 s mean at the jib's
+  /// height. No effect without wind.
+  void updateWind(double t, const Eigen::VectorXd& z, bool record = true);
 
   const CraneModel model_;  ///< own copy: callers may pass a temporary
   CraneDrives drives_;
@@ -89,8 +91,7 @@ class SupportedRopeSimulation : public Simulation {
   std::optional<WindField> wind_;
   double wind_3s_ = 0.0;
   double wind_theta_ = 0.0;  ///< slewing angle of the structure's unit wind load
-  long wind_version_ = -1;   ///< measured-wind version of that load (-1: none built)
-  long measured_version_ = 0;
+  bool structure_wind_stale_ = true;  ///< the wind changed since that load was built
 };
 
 /// The rope's support for a scene: FixedAnchor (crane: none: the anchor), RigidTrolleySupport
