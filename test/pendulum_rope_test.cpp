@@ -7,6 +7,8 @@
 #include <cmath>
 #include <vector>
 
+#include "period_estimate.hpp"
+
 #include "crane_twin/io/config_reader.hpp"
 #include "crane_twin/drives/crane_drives.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
@@ -15,6 +17,7 @@
 #include "crane_twin/analysis/trajectory_compare.hpp"
 
 using namespace crane_twin;
+using crane_twin_test::upCrossings;
 
 namespace {
 const std::string kDir = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/";
@@ -35,13 +38,6 @@ Vector6 tautState() {
   return q;
 }
 
-// Times of the upward zero crossings of x(t).
-std::vector<double> upCrossings(const std::vector<double>& t, const std::vector<double>& x) {
-  std::vector<double> c;
-  for (size_t k = 1; k < x.size(); ++k)
-    if (x[k - 1] < 0.0 && x[k] >= 0.0) c.push_back(t[k - 1] + (t[k] - t[k - 1]) * -x[k - 1] / (x[k] - x[k - 1]));
-  return c;
-}
 }  // namespace
 
 TEST(PendulumRope, ElasticForceAndTangentMatchFiniteDifferences) {

@@ -75,6 +75,7 @@ int runInfo(const SceneArgs& a) {
   std::printf("slewing_drive,%s\n", sc.slew_drive.model.c_str());
   std::printf("rope_tension_only,%s\n", sc.rope.tension_only ? "on" : "off");
   std::printf("rope_safety_factor,%g\n", sc.rope.safety_factor);
+  std::printf("rope_reeving_length_m,%g\n", sc.rope.reeving_length);
   std::printf("structure_geometric_stiffness,%s\n", sc.structure_geometric_stiffness ? "on" : "off");
   std::printf("wind,%s\n", sc.wind ? "on" : "off");
   std::printf("command_entries,%zu\n", sc.commands.size());

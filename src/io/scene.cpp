@@ -113,6 +113,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     r.bending_stiffness = n.number("bending_stiffness", def.bending_stiffness, Bounds::nonNegative());
     r.breaking_force = n.number("breaking_force", def.breaking_force, Bounds::positive());
     r.safety_factor = n.number("safety_factor", 5.0, Bounds::closed(1.0, 100.0));
+    r.reeving_length = n.number("reeving_length", 0.0, Bounds::closed(0.0, 5000.0));
     n.finish();
     if (s.crane) {
       checkWithin(n, "length", r.length, s.crane->min_rope_length, s.crane->max_rope_length,

@@ -10,7 +10,8 @@ namespace crane_twin {
 AncfRope::AncfRope(int elements, double length, double mass_per_length, double axial_stiffness,
                    double bending_stiffness, double end_mass, const Eigen::Vector3d& gravity,
                    double top_mass)
-    : elements_(elements), end_mass_(end_mass), top_mass_(top_mass), gravity_(gravity) {
+    : elements_(elements), end_mass_(end_mass), top_mass_(top_mass),
+      rope_axial_stiffness_(axial_stiffness), gravity_(gravity) {
   if (elements < 1) throw std::invalid_argument("rope needs at least one element");
   if (!(length > 0.0)) throw std::invalid_argument("rope length must be positive");
   element_.length = length / elements;
@@ -23,6 +24,7 @@ AncfRope::AncfRope(int elements, double length, double mass_per_length, double a
 void AncfRope::setLength(double length) {
   if (!(length > 0.0)) throw std::invalid_argument("rope length must be positive");
   element_.length = length / elements_;
+  element_.axial_stiffness = axialStiffnessAt(length);
   // In place (hoisting changes the length every step): the element mass int rho A S^T S dx
   // scales with l^(1 + s_i + s_j), s = 1 on slope coordinates (S2, S4 carry a factor l); the
   // point masses stay.
@@ -32,6 +34,14 @@ void AncfRope::setLength(double length) {
   for (Eigen::Index i = 0; i < M_.nonZeros(); ++i)
     v[i] = unit_mass_[i] * powers[mass_exponent_[i]] + point_mass_[i];
   updateGravityForce();
+}
+
+void AncfRope::setReevingLength(double equivalent_length) {
+  if (!(std::isfinite(equivalent_length) && equivalent_length >= 0.0)) {
+    throw std::invalid_argument("reeving length must be finite and >= 0");
+  }
+  reeving_length_ = equivalent_length;
+  element_.axial_stiffness = axialStiffnessAt(length());
 }
 
 double AncfRope::minNodalStrain(const Eigen::VectorXd& q) {

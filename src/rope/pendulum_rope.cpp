@@ -9,7 +9,7 @@ namespace crane_twin {
 PendulumRope::PendulumRope(double length, double mass_per_length, double axial_stiffness,
                            double end_mass, const Eigen::Vector3d& gravity, double top_mass)
     : L_(length), mu_(mass_per_length), EA_(axial_stiffness), end_mass_(end_mass),
-      top_mass_(top_mass), g_(gravity) {
+      top_mass_(top_mass), rope_axial_stiffness_(axial_stiffness), g_(gravity) {
   auto require = [](bool ok, const char* what) {
     if (!ok) throw std::invalid_argument(std::string("pendulum rope: ") + what);
   };
@@ -26,6 +26,7 @@ void PendulumRope::setLength(double length) {
     throw std::invalid_argument("pendulum rope: length must be finite and > 0");
   }
   L_ = length;
+  EA_ = rope_axial_stiffness_ * L_ / (L_ + reeving_length_);
   const double m = mu_ * L_;
   const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
   M_.setZero();
@@ -33,6 +34,14 @@ void PendulumRope::setLength(double length) {
   M_.bottomRightCorner<3, 3>() = (m / 3.0 + end_mass_) * I;
   M_.topRightCorner<3, 3>() = M_.bottomLeftCorner<3, 3>() = (m / 6.0) * I;
   updateLoad();
+}
+
+void PendulumRope::setReevingLength(double equivalent_length) {
+  if (!(std::isfinite(equivalent_length) && equivalent_length >= 0.0)) {
+    throw std::invalid_argument("pendulum rope: reeving length must be finite and >= 0");
+  }
+  reeving_length_ = equivalent_length;
+  EA_ = rope_axial_stiffness_ * L_ / (L_ + reeving_length_);
 }
 
 void PendulumRope::updateLoad() {

@@ -35,6 +35,7 @@ CraneModel buildCraneModel(const Scene& scene) {
   m.rope.axial_stiffness = n * scene.rope.axial_stiffness;
   m.rope.bending_stiffness = scene.rope.bending ? n * scene.rope.bending_stiffness : 0.0;
   m.rope.breaking_force = n * scene.rope.breaking_force;
+  m.rope.reeving_equivalent_length = scene.rope.reeving_length / n;
   m.end_mass = scene.payload_mass + scene.hookBlockMass();
   if (scene.structure_geometric_stiffness) addGeometricStiffness(m);
   return m;

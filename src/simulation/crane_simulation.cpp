@@ -25,6 +25,7 @@ AncfRope sceneRope(const CraneModel& m) {
                 m.rope.axial_stiffness, m.rope.bending_stiffness, m.end_mass, m.gravityVector(),
                 m.trolleyMass());
   rope.setTensionOnly(m.scene.rope.tension_only);
+  rope.setReevingLength(m.rope.reeving_equivalent_length);
   return rope;
 }
 

@@ -42,7 +42,7 @@ InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model) 
 void InvariantReducedSimulation::initialize() {
   const CraneModel& m = full_.model();
   weight_ = (m.end_mass + m.ropeMass()) * m.scene.gravity;
-  end_strain_ = m.end_mass * m.scene.gravity / m.rope.axial_stiffness;
+  end_strain_ = m.end_mass * m.scene.gravity / m.rope.axialStiffnessAt(m.scene.rope.length);
   full_order_ = false;
   steps_ = full_order_steps_ = hand_overs_ = 0;
   slack_hand_overs_ = failure_hand_overs_ = indicator_hand_overs_ = start_hand_overs_ = 0;
@@ -121,7 +121,7 @@ double InvariantReducedSimulation::predictedMinimumTension(double tension, const
   const double L = ropeLength(), mu = m.rope.mass_per_length;
   const double g_d = full_.rope().gravity().dot(d);
   const double quasi_static = (m.end_mass + mu * L) * g_d + m.end_mass * vp2 / l;
-  const double k = m.rope.axial_stiffness / L, m_eff = m.end_mass + mu * L / 3.0;
+  const double k = m.rope.axialStiffnessAt(L) / L, m_eff = m.end_mass + mu * L / 3.0;
   const double dT = tension - quasi_static;
   return quasi_static - std::sqrt(dT * dT + k * m_eff * va * va);
 }

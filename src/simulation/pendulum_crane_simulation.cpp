@@ -12,6 +12,7 @@ PendulumCraneSimulation::PendulumCraneSimulation(const CraneModel& m)
                                          model_.rope.axial_stiffness, model_.end_mass,
                                          model_.gravityVector(), model_.trolleyMass());
   rope_->setTensionOnly(sc.rope.tension_only);
+  rope_->setReevingLength(model_.rope.reeving_equivalent_length);
   solver_ = std::make_unique<PendulumSolver>(*rope_, *support_, GeneralizedAlpha::forScene(sc),
                                              sc.time_step);
   solver_->setRopeDamping(sc.rope.damping);

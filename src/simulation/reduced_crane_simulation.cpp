@@ -52,7 +52,7 @@ ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model) : full_(
 void ReducedCraneSimulation::initialize() {
   const CraneModel& m = full_.model();
   weight_ = (m.end_mass + m.ropeMass()) * m.scene.gravity;
-  end_strain_ = m.end_mass * m.scene.gravity / m.rope.axial_stiffness;
+  end_strain_ = m.end_mass * m.scene.gravity / m.rope.axialStiffnessAt(m.scene.rope.length);
   reduced_steps_ = 0;
   full_order_ = false;
   full_order_steps_ = 0;

@@ -122,7 +122,7 @@ Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
                                               const Eigen::VectorXd& yd) const {
   // One pass over the points: r_x, r_xx (and r_x') as sums of the columns of A, the density's
   // gradient, and the rank-one updates of Q_A (the inner size m is small: fixed 3-vectors).
-  const double EA = rope_.element().axial_stiffness, EI = rope_.element().bending_stiffness;
+  const double EA = rope_.axialStiffnessAt(L_), EI = rope_.element().bending_stiffness;
   const double c1 = 1.0 / L_, c2 = 1.0 / (L_ * L_), cEA = damping_ * EA;
   const bool damped = cEA > 0.0 && yd.size() == y.size();
   const bool tension_only = rope_.element().tension_only;
@@ -159,7 +159,7 @@ Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
 }
 
 double InvariantReducedSolver::elasticEnergy(const Eigen::VectorXd& y) const {
-  const double EA = rope_.element().axial_stiffness, EI = rope_.element().bending_stiffness;
+  const double EA = rope_.axialStiffnessAt(L_), EI = rope_.element().bending_stiffness;
   const Eigen::Map<const Matrix3X> A(y.data(), 3, m_);
   const Matrix3X Rx = A * D1_ / L_;
   const Matrix3X Rxx = A * D2_ / (L_ * L_);
@@ -184,7 +184,7 @@ Eigen::Vector3d InvariantReducedSolver::chord(const Eigen::VectorXd& y) const {
 
 bool InvariantReducedSolver::factorize(double a, double c, double k, const Eigen::Matrix3d& G,
                                        const Eigen::VectorXd& y) {
-  const double EA = rope_.element().axial_stiffness, EI = rope_.element().bending_stiffness;
+  const double EA = rope_.axialStiffnessAt(L_), EI = rope_.element().bending_stiffness;
   const Eigen::Vector3d d = chord(y);
   const Eigen::Matrix3d dd = d * d.transpose(), tr = Eigen::Matrix3d::Identity() - dd;
   // Tension-weighted K_g at the current state (N / |r_x| per point).

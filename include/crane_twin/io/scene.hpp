@@ -41,6 +41,8 @@ struct RopeSettings {
   double breaking_force = 345e3;  ///< per fall [N]
   bool tension_only = false;      ///< no axial force in compression (docs/scenes.md)
   double safety_factor = 5.0;     ///< working load limit = breaking_force / safety_factor
+  /// Single line in tension between the winch drum and the falls [m] (docs/model.md "Reeving").
+  double reeving_length = 0.0;
 };
 
 /// `slewing.drive` (docs/scenes.md): kinematic (the angle follows the ramped rate command) or a

@@ -33,6 +33,14 @@ class AncfRope {
   double topMass() const { return top_mass_; }
   const Eigen::Vector3d& gravity() const { return gravity_; }
   const AncfCableProperties& element() const { return element_; }
+  /// `rope.reeving_length` (docs/model.md "Reeving"): the winch's line in series with the hanging
+  /// rope, given as its length L_s = L_r / n along the equivalent cable [m] >= 0. The elements'
+  /// EA becomes EA_rope L / (L + L_s) (and follows setLength): the hook's axial stiffness
+  /// EA_rope / (L + L_s), the reeving's stretch smeared over the hanging length.
+  void setReevingLength(double equivalent_length);
+  double reevingLength() const { return reeving_length_; }
+  /// The elements' EA at hanging length L: EA_rope L / (L + L_s) [N].
+  double axialStiffnessAt(double L) const { return rope_axial_stiffness_ * L / (L + reeving_length_); }
   /// `rope.tension_only` (docs/scenes.md): no axial force in compression (AncfCableProperties).
   void setTensionOnly(bool on) { element_.tension_only = on; }
   const SparseMatrix& massMatrix() const { return M_; }
@@ -81,6 +89,7 @@ class AncfRope {
   int elements_;
   AncfCableProperties element_;
   double end_mass_, top_mass_;
+  double rope_axial_stiffness_, reeving_length_ = 0.0;
   Eigen::Vector3d gravity_;
   SparseMatrix M_;
   Eigen::VectorXd Fg_;

@@ -43,6 +43,9 @@ class PendulumRope {
   double endMass() const { return end_mass_; }
   double topMass() const { return top_mass_; }
   const Eigen::Vector3d& gravity() const { return g_; }
+  /// `rope.reeving_length` as AncfRope::setReevingLength: EA = EA_rope L / (L + L_s), L_s =
+  /// equivalent_length [m] >= 0, following setLength. axialStiffness() is the effective EA.
+  void setReevingLength(double equivalent_length);
   /// `rope.tension_only` (default true here as in scenes): false lets the bar take compression.
   void setTensionOnly(bool on) { tension_only_ = on; }
   bool tensionOnly() const { return tension_only_; }
@@ -69,6 +72,7 @@ class PendulumRope {
 
  private:
   double L_, mu_, EA_, end_mass_, top_mass_;
+  double rope_axial_stiffness_, reeving_length_ = 0.0;
   bool tension_only_ = true;
   Eigen::Vector3d g_;
   Matrix6 M_;

@@ -19,6 +19,14 @@ struct EquivalentRope {
   double axial_stiffness = 0.0;    ///< n EA [N]
   double bending_stiffness = 0.0;  ///< n EI [N m^2] (0 when rope.bending is false)
   double breaking_force = 0.0;     ///< n F_break [N]
+  /// The reeving's line L_r as hanging length of the equivalent cable, L_r / n [m]
+  /// (docs/model.md "Reeving").
+  double reeving_equivalent_length = 0.0;
+  /// Axial stiffness of the hanging equivalent cable of length L [m] with the reeving's line in
+  /// series, n EA L / (L + L_r / n) [N]: the hook's axial stiffness n EA / (L + L_r / n).
+  double axialStiffnessAt(double L) const {
+    return axial_stiffness * L / (L + reeving_equivalent_length);
+  }
 };
 
 struct CraneModel {
@@ -34,8 +42,13 @@ struct CraneModel {
   int ropeDofs() const { return 6 * (scene.rope.elements + 1); }
   /// Total rope mass of the hanging length [kg].
   double ropeMass() const { return rope.mass_per_length * scene.rope.length; }
-  /// Mass that moves with the trolley point [kg] (0 without a crane) and gravity (0, 0, -g).
-  double trolleyMass() const { return scene.crane ? scene.crane->trolley_mass : 0.0; }
+  /// Mass that moves with the trolley point [kg] (0 without a crane): the trolley, and the
+  /// reeving's line mu L_r, which the jib carries (docs/model.md "Reeving").
+  double trolleyMass() const {
+    return scene.crane ? scene.crane->trolley_mass + scene.rope.mass_per_length * scene.rope.reeving_length
+                       : 0.0;
+  }
+  /// Gravity (0, 0, -g) [m/s^2].
   Eigen::Vector3d gravityVector() const { return Eigen::Vector3d(0.0, 0.0, -scene.gravity); }
 };
 
