@@ -73,11 +73,19 @@ CraneSnapshot snapshotOf(const Simulation& sim, const SnapshotOptions& options) 
   s.hoist_speed = drives.hoistSpeed();
 
   s.rope_curve = sim.ropeCurve(options.samples_per_element);
-  // The hook's z axis along the rope's last sampled segment, pointing up the rope.
-  const Eigen::Vector3d up = s.rope_curve[s.rope_curve.size() - 2] - s.rope_curve.back();
-  s.hook.position = s.rope_curve.back();
-  s.hook.orientation = up.norm() > 0.0 ? zAxisAlong(up.normalized()) : Eigen::Quaterniond::Identity();
-  s.payload = s.hook;
+  // The payload's z axis along the chain's last sampled segment, pointing up the rope; the hook
+  // block's along the hoist rope's last segment (the same point and frame without a rigging).
+  auto alongSegment = [&](std::size_t end) {
+    FramePose f;
+    f.position = s.rope_curve[end];
+    const Eigen::Vector3d up = s.rope_curve[end - 1] - s.rope_curve[end];
+    f.orientation = up.norm() > 0.0 ? zAxisAlong(up.normalized()) : Eigen::Quaterniond::Identity();
+    return f;
+  };
+  s.payload = alongSegment(s.rope_curve.size() - 1);
+  s.hook = sim.hookNode() == sim.ropeNodes() - 1
+               ? s.payload
+               : alongSegment(static_cast<std::size_t>(sim.hookNode() * options.samples_per_element));
 
   const Eigen::Matrix3d R = slewRotation(s.slew_angle);
   s.slewing.orientation = Eigen::Quaterniond(R);

@@ -76,6 +76,7 @@ int runInfo(const SceneArgs& a) {
   std::printf("rope_tension_only,%s\n", sc.rope.tension_only ? "on" : "off");
   std::printf("rope_safety_factor,%g\n", sc.rope.safety_factor);
   std::printf("rope_reeving_length_m,%g\n", sc.rope.reeving_length);
+  std::printf("hook_rigging_length_m,%g\n", sc.hook_rigging_length);
   std::printf("structure_geometric_stiffness,%s\n", sc.structure_geometric_stiffness ? "on" : "off");
   std::printf("wind,%s\n", sc.wind ? "on" : "off");
   std::printf("command_entries,%zu\n", sc.commands.size());
@@ -219,7 +220,7 @@ int runStatic(const SceneArgs& a) {
   }
   ct::CraneSimulation sim(m);
   const ct::CoupledState s = sim.staticState(&H);
-  const Eigen::Vector3d p = ct::AncfRope::nodePosition(s.q, sim.rope().nodes() - 1);
+  const Eigen::Vector3d p = sim.rope().position(s.q, sim.rope().nodes() - 1);
   std::printf("payload_x,%.9f\npayload_y,%.9f\npayload_z,%.9f\n", p.x(), p.y(), p.z());
   std::printf("rope_top_tension,%.6f\n", sim.solver().topTension(s));
   std::printf("jib_tip_dz,%.9f\n", sim.support().jibTipDisplacement(s.z).z());

@@ -126,6 +126,18 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     n.finish();
   }
   {
+    ConfigNode n = root.map("hook");
+    s.hook_mass = n.number("mass", s.crane ? s.crane->hook_block_mass : 0.0, Bounds::nonNegative());
+    s.hook_rigging_length = n.number("rigging_length", 0.0, Bounds::closed(0.0, 100.0));
+    n.finish();
+    if (s.hook_rigging_length > 0.0 && !(s.hook_mass > 0.0)) {
+      n.fail("mass", "must be > 0 with a rigging_length (the hook block is the rigging's top point)");
+    }
+    if (s.hook_rigging_length > 0.0 && !(s.payload_mass > 0.0)) {
+      n.fail("rigging_length", "needs payload.mass > 0 (the rigging carries the payload)");
+    }
+  }
+  {
     ConfigNode n = root.map("trolley");
     s.trolley_radius = n.number("radius", s.crane ? s.crane->max_radius : 0.0, Bounds::any());
     n.finish();

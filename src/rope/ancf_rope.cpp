@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace crane_twin {
 
@@ -52,7 +53,7 @@ double AncfRope::minNodalStrain(const Eigen::VectorXd& q) {
 
 double AncfRope::kineticEnergyRelativeToTop(const Eigen::VectorXd& v) const {
   Eigen::VectorXd w = v;
-  for (int j = 0; j < nodes(); ++j) w.segment<3>(6 * j) -= v.head<3>();
+  for (int j = 0; j < nodes(); ++j) w.segment<3>(positionIndex(j)) -= v.head<3>();
   return 0.5 * w.dot(M_ * w);
 }
 
@@ -61,21 +62,33 @@ void AncfRope::rescaleSlopes(Eigen::VectorXd& x, double from, double to) {
   for (int j = 0; 6 * j < x.size(); ++j) x.segment<3>(6 * j + 3) *= f;
 }
 
+void AncfRope::rescaleHoistSlopes(Eigen::VectorXd& x, double from, double to) const {
+  const double f = from / to;
+  for (int j = 0; j <= elements_; ++j) x.segment<3>(6 * j + 3) *= f;
+}
+
 void AncfRope::assembleMass() {
-  const Matrix12 Me = ancfMassMatrix(element_);
-  SparseAssembler A(dofs());
+  // Two parts on one pattern: the hoist rope's elements, whose entries scale with the element
+  // length under hoisting (setLength), and what does not (point masses, the rigging's element).
+  SparseAssembler hoist(dofs()), fixed(dofs());
   std::vector<int> eq(12);
-  for (int k = 0; k < elements_; ++k) {
-    for (int i = 0; i < 12; ++i) eq[i] = 6 * k + i;
-    A.add(Me, eq);
+  const Matrix12 Me = ancfMassMatrix(element_);
+  for (int k = 0; k < elements(); ++k) {
+    const std::array<int, 12> dofs = elementDofs(k);
+    eq.assign(dofs.begin(), dofs.end());
+    if (k < elements_) hoist.add(Me, eq);
+    else fixed.add(ancfMassMatrix(rigging_), eq);
   }
+  const int end = positionIndex(nodes() - 1);
   for (int d = 0; d < 3; ++d) {
-    A.addEntry(6 * elements_ + d, 6 * elements_ + d, end_mass_);
-    if (top_mass_ != 0.0) A.addEntry(d, d, top_mass_);
+    fixed.addEntry(end + d, end + d, end_mass_);
+    if (top_mass_ != 0.0) fixed.addEntry(d, d, top_mass_);
+    if (hasRigging()) fixed.addEntry(6 * elements_ + d, 6 * elements_ + d, hook_mass_);
   }
-  M_ = A.build();
+  const SparseMatrix Mh = hoist.build(), Mf = fixed.build();
+  M_ = Mh + Mf;
   M_.makeCompressed();
-  // The length scaling of every entry (setLength): value = unit l^(1 + s_i + s_j) + point.
+  // The length scaling of every entry (setLength): value = unit l^(1 + s_i + s_j) + fixed.
   const double l = element_.length;
   unit_mass_.resize(M_.nonZeros());
   point_mass_.assign(M_.nonZeros(), 0.0);
@@ -83,15 +96,11 @@ void AncfRope::assembleMass() {
   for (int c = 0; c < M_.outerSize(); ++c)
     for (SparseMatrix::InnerIterator it(M_, c); it; ++it) {
       const Eigen::Index i = &it.valueRef() - M_.valuePtr();
+      // Hoist entries only scale; their rows and columns are the 6-per-node ones.
       const int e = ((it.row() % 6) >= 3) + ((it.col() % 6) >= 3);
-      double point = 0.0;
-      if (it.row() == it.col() && it.row() % 6 < 3) {
-        if (it.row() >= 6 * elements_) point += end_mass_;
-        if (it.row() < 3) point += top_mass_;
-      }
-      point_mass_[i] = point;
+      point_mass_[i] = Mf.coeff(it.row(), it.col());
       mass_exponent_[i] = e;
-      unit_mass_[i] = (it.value() - point) / std::pow(l, 1 + e);
+      unit_mass_[i] = Mh.coeff(it.row(), it.col()) / std::pow(l, 1 + e);
     }
   updateGravityForce();
 }
@@ -99,7 +108,7 @@ void AncfRope::assembleMass() {
 void AncfRope::updateGravityForce() {
   // F_g = M * (rigid translation field g): exact consistent gravity, incl. the end mass.
   Eigen::VectorXd g = Eigen::VectorXd::Zero(dofs());
-  for (int j = 0; j < nodes(); ++j) g.segment<3>(6 * j) = gravity_;
+  for (int j = 0; j < nodes(); ++j) g.segment<3>(positionIndex(j)) = gravity_;
   Fg_ = M_ * g;
   if (ext_per_length_.isZero() && ext_end_.isZero()) return;
   const double l = element_.length;
@@ -109,7 +118,7 @@ void AncfRope::updateGravityForce() {
     Fg_.segment<3>(6 * k + 6) += 0.5 * l * ext_per_length_;
     Fg_.segment<3>(6 * k + 9) -= l * l / 12.0 * ext_per_length_;
   }
-  Fg_.segment<3>(6 * elements_) += ext_end_;
+  Fg_.segment<3>(positionIndex(nodes() - 1)) += ext_end_;
 }
 
 void AncfRope::setExternalLoad(const Eigen::Vector3d& per_length, const Eigen::Vector3d& end_force) {
@@ -126,14 +135,13 @@ void AncfRope::elasticForce(const Eigen::VectorXd& q, Eigen::VectorXd& Q,
   Q.setZero(dofs());
   Vector12 Qe;
   Matrix12 Ke;
-  for (int k = 0; k < elements_; ++k) {
-    const Vector12 e = q.segment<12>(6 * k);
-    ancfElasticForce(element_, e, Qe, tangent ? &Ke : nullptr);
-    Q.segment<12>(6 * k) += Qe;
+  for (int k = 0; k < elements(); ++k) {
+    const std::array<int, 12> idx = elementDofs(k);
+    ancfElasticForce(element(k), elementCoordinates(q, k), Qe, tangent ? &Ke : nullptr);
+    for (int i = 0; i < 12; ++i) Q(idx[i]) += Qe(i);
     if (tangent) {
-      const int o = 6 * k;
       for (int j = 0; j < 12; ++j)
-        for (int i = 0; i < 12; ++i) tangent->emplace_back(o + i, o + j, Ke(i, j));
+        for (int i = 0; i < 12; ++i) tangent->emplace_back(idx[i], idx[j], Ke(i, j));
     }
   }
 }
@@ -150,32 +158,94 @@ SparseMatrix AncfRope::tangentStiffness(const Eigen::VectorXd& q, Eigen::VectorX
 
 double AncfRope::elasticEnergy(const Eigen::VectorXd& q) const {
   double U = 0.0;
-  for (int k = 0; k < elements_; ++k) U += ancfElasticEnergy(element_, q.segment<12>(6 * k));
+  for (int k = 0; k < elements(); ++k) U += ancfElasticEnergy(element(k), elementCoordinates(q, k));
   return U;
 }
 
 Eigen::VectorXd AncfRope::stretchedStraight(const Eigen::Vector3d& top, const Eigen::Vector3d& d,
                                             double end_force, double force_per_length) const {
   const double l = element_.length, L = length(), EA = element_.axial_stiffness;
+  // With a rigging: end_force acts at the payload; the rigging's tension grows by its own weight
+  // and the hook block's adds at the junction (the field force_per_length / mu per kilogram).
+  double hook_force = end_force;
+  const double field = element_.mass_per_length > 0.0 ? force_per_length / element_.mass_per_length : 0.0;
+  if (hasRigging()) hook_force += field * (rigging_.mass_per_length * rigging_.length + hook_mass_);
   Eigen::VectorXd q(dofs());
   Eigen::Vector3d r = top;
-  for (int j = 0; j < nodes(); ++j) {
-    const double T = end_force + force_per_length * (L - j * l);
+  for (int j = 0; j <= elements_; ++j) {
+    const double T = hook_force + force_per_length * (L - j * l);
     q.segment<3>(6 * j) = r;
     q.segment<3>(6 * j + 3) = (1.0 + T / EA) * d;
-    const double Tmid = end_force + force_per_length * (L - (j + 0.5) * l);
+    const double Tmid = hook_force + force_per_length * (L - (j + 0.5) * l);
     r += (1.0 + Tmid / EA) * l * d;
+  }
+  if (hasRigging()) {
+    // The rigging stretched by its mean tension, its slopes by the tension at each end.
+    const double Tr = end_force + 0.5 * field * rigging_.mass_per_length * rigging_.length;
+    const double Ttop = end_force + field * rigging_.mass_per_length * rigging_.length;
+    const int hook = 6 * elements_;
+    q.segment<3>(hook + 6) = (1.0 + Ttop / rigging_.axial_stiffness) * d;
+    q.segment<3>(hook + 9) = q.segment<3>(hook) + (1.0 + Tr / rigging_.axial_stiffness) * rigging_.length * d;
+    q.segment<3>(hook + 12) = (1.0 + end_force / rigging_.axial_stiffness) * d;
   }
   return q;
 }
 
 Eigen::VectorXd AncfRope::straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d) const {
   Eigen::VectorXd q(dofs());
-  for (int j = 0; j < nodes(); ++j) {
+  for (int j = 0; j <= elements_; ++j) {
     q.segment<3>(6 * j) = top + element_.length * j * d;
     q.segment<3>(6 * j + 3) = d;
   }
+  if (hasRigging()) q.tail<9>() << d, top + (length() + rigging_.length) * d, d;
   return q;
+}
+
+void AncfRope::setRigging(double length, double hook_mass, double mass_per_length,
+                          double axial_stiffness, double bending_stiffness) {
+  auto require = [](bool ok, const char* what) {
+    if (!ok) throw std::invalid_argument(std::string("rigging: ") + what);
+  };
+  require(std::isfinite(length) && length > 0.0, "length must be finite and > 0");
+  require(std::isfinite(hook_mass) && hook_mass > 0.0, "hook block mass must be finite and > 0");
+  require(std::isfinite(mass_per_length) && mass_per_length >= 0.0, "mass per length must be >= 0");
+  require(std::isfinite(axial_stiffness) && axial_stiffness > 0.0, "axial stiffness must be > 0");
+  require(std::isfinite(bending_stiffness) && bending_stiffness > 0.0, "bending stiffness must be > 0");
+  rigging_.length = length;
+  rigging_.mass_per_length = mass_per_length;
+  rigging_.axial_stiffness = axial_stiffness;
+  rigging_.bending_stiffness = bending_stiffness;
+  rigging_.gauss_points = element_.gauss_points;
+  rigging_.tension_only = true;  // a sling takes no compression
+  hook_mass_ = hook_mass;
+  assembleMass();
+}
+
+std::vector<Eigen::Vector3d> AncfRope::sampleCurve(const Eigen::VectorXd& q, int per_element) const {
+  if (!hasRigging()) return sampleRopeCurve(q, element_.length, per_element);
+  std::vector<Eigen::Vector3d> points = sampleRopeCurve(q.head(6 * (elements_ + 1)), element_.length, per_element);
+  points.pop_back();  // the hook, first point of the rigging's samples
+  const Vector12 e = elementCoordinates(q, elements_);
+  for (int i = 0; i < per_element; ++i)
+    points.push_back(ancfPosition(e, static_cast<double>(i) / per_element, rigging_.length));
+  points.push_back(q.tail<6>().head<3>());
+  return points;
+}
+
+std::array<int, 12> AncfRope::elementDofs(int k) const {
+  std::array<int, 12> idx;
+  for (int i = 0; i < 12; ++i) idx[i] = 6 * k + i;
+  if (k == elements_) {  // the rigging: [r_n (hook), s_h, r_p, r_px]
+    for (int i = 3; i < 12; ++i) idx[i] = 6 * k + 3 + i;
+  }
+  return idx;
+}
+
+Vector12 AncfRope::elementCoordinates(const Eigen::VectorXd& q, int k) const {
+  if (k < elements_) return q.segment<12>(6 * k);
+  Vector12 e;
+  e << q.segment<3>(6 * k), q.tail<9>();
+  return e;
 }
 
 // r(xi) = S(xi) e per element (docs/model.md), xi = k / per_element.

@@ -70,7 +70,7 @@ TwinAdapter::TwinAdapter(ros::NodeHandle nh, const TwinSettings& settings,
 
 void TwinAdapter::restart(const CraneModel& model, const Simulation& sim) {
   crane_ = model.scene.crane ? &*model.scene.crane : nullptr;
-  end_mass_ = model.end_mass;
+  end_mass_ = model.hangingPointMass();
   hook_mass_ = model.scene.hookBlockMass();
   gravity_ = model.scene.gravity;
   follower_.clear();

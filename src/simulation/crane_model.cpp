@@ -13,7 +13,7 @@ namespace crane_twin {
 void addGeometricStiffness(CraneModel& m) {
   TowerCraneStructure& st = *m.structure;
   const double g = m.scene.gravity;
-  const double hanging = m.end_mass + m.ropeMass() + m.trolleyMass();
+  const double hanging = m.hangingPointMass() + m.ropeMass() + m.trolleyMass();
   const Eigen::VectorXd f = selfWeightLoad(st, g) +
       st.pointForce(st.trolleyWeights(m.scene.trolley_radius), Eigen::Vector3d(0.0, 0.0, -hanging * g));
   m.structure_axial_forces = memberAxialForces(st, staticDisplacement(st, f));
@@ -36,7 +36,8 @@ CraneModel buildCraneModel(const Scene& scene) {
   m.rope.bending_stiffness = scene.rope.bending ? n * scene.rope.bending_stiffness : 0.0;
   m.rope.breaking_force = n * scene.rope.breaking_force;
   m.rope.reeving_equivalent_length = scene.rope.reeving_length / n;
-  m.end_mass = scene.payload_mass + scene.hookBlockMass();
+  m.end_mass = scene.payload_mass + (scene.hasRigging() ? 0.0 : scene.hookBlockMass());
+  m.hook_mass = scene.hasRigging() ? scene.hookBlockMass() : 0.0;
   if (scene.structure_geometric_stiffness) addGeometricStiffness(m);
   return m;
 }

@@ -26,6 +26,13 @@ AncfRope sceneRope(const CraneModel& m) {
                 m.trolleyMass());
   rope.setTensionOnly(m.scene.rope.tension_only);
   rope.setReevingLength(m.rope.reeving_equivalent_length);
+  // The rigging: one sling leg of the hoist rope's wire (one fall's data, docs/model.md "Hook
+  // block"); its bending stiffness is needed for the payload end's slope even without rope.bending.
+  if (m.scene.hasRigging()) {
+    const RopeSettings& r = m.scene.rope;
+    rope.setRigging(m.scene.hook_rigging_length, m.hook_mass, r.mass_per_length, r.axial_stiffness,
+                    std::max(r.bending_stiffness, 1e-8 * r.axial_stiffness));
+  }
   return rope;
 }
 
@@ -60,7 +67,7 @@ void CraneSimulation::applyRopeLength(CoupledState& s) {
   const double from = rope_->length();
   if (!followHoistLength()) return;
   const double to = rope_->length();
-  for (Eigen::VectorXd* x : {&s.q, &s.v, &s.qdd, &s.a}) AncfRope::rescaleSlopes(*x, from, to);
+  for (Eigen::VectorXd* x : {&s.q, &s.v, &s.qdd, &s.a}) rope_->rescaleHoistSlopes(*x, from, to);
 }
 
 bool CraneSimulation::followHoistLength() {
@@ -133,8 +140,14 @@ double CraneSimulation::energyOf(const CoupledState& s) const {
   return mechanicalEnergy(*rope_, *support_, s);
 }
 
+std::vector<bool> CraneSimulation::fullStatePositionBlocks() const {
+  std::vector<bool> b(rope_->dofs() / 3, false);
+  for (int j = 0; j < rope_->nodes(); ++j) b[rope_->positionIndex(j) / 3] = true;
+  return b;
+}
+
 std::vector<Eigen::Vector3d> CraneSimulation::ropeCurve(int per_element) const {
-  return sampleRopeCurve(state_.q, rope_->element().length, per_element);
+  return rope_->sampleCurve(state_.q, per_element);
 }
 
 ModalBasis CraneSimulation::ropeModes(int count) {

@@ -8,14 +8,23 @@ namespace crane_twin {
 PendulumCraneSimulation::PendulumCraneSimulation(const CraneModel& m)
     : SupportedRopeSimulation(m) {
   const Scene& sc = model_.scene;
+  // With a rigging the rope's end carries the hook block and the payload hangs on a bar of one
+  // fall's wire (docs/model.md "Hook block"), tension-only.
   rope_ = std::make_unique<PendulumRope>(sc.rope.length, model_.rope.mass_per_length,
-                                         model_.rope.axial_stiffness, model_.end_mass,
+                                         model_.rope.axial_stiffness,
+                                         sc.hasRigging() ? model_.hook_mass : model_.end_mass,
                                          model_.gravityVector(), model_.trolleyMass());
   rope_->setTensionOnly(sc.rope.tension_only);
   rope_->setReevingLength(model_.rope.reeving_equivalent_length);
   solver_ = std::make_unique<PendulumSolver>(*rope_, *support_, GeneralizedAlpha::forScene(sc),
                                              sc.time_step);
   solver_->setRopeDamping(sc.rope.damping);
+  if (sc.hasRigging()) {
+    rigging_ = std::make_unique<PendulumRope>(sc.hook_rigging_length, sc.rope.mass_per_length,
+                                              sc.rope.axial_stiffness, model_.end_mass,
+                                              model_.gravityVector(), 0.0);
+    solver_->setRigging(rigging_.get());
+  }
 }
 
 CoupledState PendulumCraneSimulation::swingEquilibrium(double swing_rad, double az_rad,
@@ -25,7 +34,10 @@ CoupledState PendulumCraneSimulation::swingEquilibrium(double swing_rad, double 
 
 Eigen::VectorXd PendulumCraneSimulation::straightRope(const Eigen::Vector3d& top,
                                                       const Eigen::Vector3d& dir) const {
-  return PendulumRope::straight(top, dir, rope_->length());
+  if (!rigging_) return PendulumRope::straight(top, dir, rope_->length());
+  Eigen::VectorXd q(9);
+  q << top, top + rope_->length() * dir, top + (rope_->length() + rigging_->length()) * dir;
+  return q;
 }
 
 void PendulumCraneSimulation::initialize() {
@@ -44,9 +56,11 @@ void PendulumCraneSimulation::step() {
 std::vector<Eigen::Vector3d> PendulumCraneSimulation::ropeCurve(int per_element) const {
   if (per_element < 1) throw std::invalid_argument("rope samples per element must be >= 1");
   std::vector<Eigen::Vector3d> points;
-  const Eigen::Vector3d top = state_.q.head<3>(), end = state_.q.tail<3>();
-  for (int i = 0; i < per_element; ++i) points.push_back(top + (end - top) * i / per_element);
-  points.push_back(end);
+  for (int b = 0; b + 1 < ropeNodes(); ++b) {  // each bar straight
+    const Eigen::Vector3d a = ropeNode(b), e = ropeNode(b + 1);
+    for (int i = 0; i < per_element; ++i) points.push_back(a + (e - a) * i / per_element);
+  }
+  points.push_back(state_.q.tail<3>());
   return points;
 }
 

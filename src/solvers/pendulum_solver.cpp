@@ -7,11 +7,6 @@
 
 namespace crane_twin {
 
-namespace {
-using Matrix9 = Eigen::Matrix<double, 9, 9>;
-using Vector9 = Eigen::Matrix<double, 9, 1>;
-}  // namespace
-
 PendulumSolver::PendulumSolver(const PendulumRope& rope, RopeSupport& support,
                                const GeneralizedAlpha& scheme, double time_step,
                                NewtonSettings newton)
@@ -24,20 +19,104 @@ void PendulumSolver::setRopeDamping(double c) {
   damping_ = c;
 }
 
+PendulumSolver::MatrixN PendulumSolver::massMatrix() const {
+  MatrixN M = MatrixN::Zero(dofs(), dofs());
+  M.topLeftCorner<6, 6>() = rope_.massMatrix();
+  if (rigging_) M.bottomRightCorner<6, 6>() += rigging_->massMatrix();
+  return M;
+}
+
+PendulumSolver::VectorN PendulumSolver::appliedForce() const {
+  VectorN F = VectorN::Zero(dofs());
+  F.head<6>() = rope_.gravityForce();
+  if (rigging_) F.tail<6>() += rigging_->gravityForce();
+  return F;
+}
+
+void PendulumSolver::forces(const VectorN& q, const VectorN& v, VectorN& Q, VectorN& Qd,
+                            MatrixN* K, MatrixN* C) const {
+  Vector6 Qb, Qdb;
+  Matrix6 Kb, Cb;
+  Q = Qd = VectorN::Zero(dofs());
+  if (K) *K = MatrixN::Zero(dofs(), dofs());
+  if (C) *C = MatrixN::Zero(dofs(), dofs());
+  rope_.elasticForce(q.head<6>(), Qb, K ? &Kb : nullptr);
+  rope_.dampingForce(damping_, q.head<6>(), v.head<6>(), Qdb, C ? &Cb : nullptr);
+  Q.head<6>() = Qb;
+  Qd.head<6>() = Qdb;
+  if (K) K->topLeftCorner<6, 6>() = Kb;
+  if (C) C->topLeftCorner<6, 6>() = Cb;
+  if (!rigging_) return;
+  rigging_->elasticForce(q.tail<6>(), Qb, K ? &Kb : nullptr);
+  rigging_->dampingForce(damping_, q.tail<6>(), v.tail<6>(), Qdb, C ? &Cb : nullptr);
+  Q.tail<6>() += Qb;
+  Qd.tail<6>() += Qdb;
+  if (K) K->bottomRightCorner<6, 6>() += Kb;
+  if (C) C->bottomRightCorner<6, 6>() += Cb;
+}
+
 CoupledState PendulumSolver::solveSwingEquilibrium(double swing_rad, double az_rad,
                                                    Eigen::Vector3d* holding_force) {
   const int m = support_.size();
-  // The end point carries P, its share of the applied load (the end mass's and half the rope's
-  // weight, and the wind's, PendulumRope::gravityForce). At swing 0 the bar hangs along P;
-  // otherwise a horizontal holding force H turns it to u: P + H = T u with T = P_z / u_z.
-  const Vector6& F = rope_.gravityForce();
-  const Eigen::Vector3d P = F.tail<3>();
-  Eigen::Vector3d u = swingDirection(swing_rad, az_rad);
-  if (swing_rad == 0.0 && P.norm() > 0.0) u = P.normalized();
-  const double T = swing_rad == 0.0 ? P.norm() : P.z() / u.z();
-  const Eigen::Vector3d H = T * u - P;
+  // Each point carries its share of the applied load (PendulumRope::gravityForce): P_2 on the
+  // payload, P_1 on the hook block (without a rigging, only the end point's P_1). A horizontal
+  // holding force H on the end point turns the chain; each bar lies along the load below it:
+  // u_2 ~ P_2 + H, u_1 ~ P_1 + P_2 + H, T = |load below|. H is found so that the chord from
+  // the top to the end point makes swing_rad with the vertical (closed form without a rigging).
+  const VectorN F = appliedForce();
+  const Eigen::Vector3d top0 = support_.point(Eigen::VectorXd::Zero(m));
+  const Eigen::Vector3d horiz(std::cos(az_rad), std::sin(az_rad), 0.0);
+  struct Chain {
+    Eigen::Vector3d u1, u2, r1, r2;
+    double T1 = 0.0, T2 = 0.0;
+  };
+  const Eigen::Vector3d P2 = rigging_ ? Eigen::Vector3d(F.tail<3>()) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d P = F.segment<3>(3) + P2;  // all the load below the top
+  auto chain = [&](const Eigen::Vector3d& H) {
+    Chain c;
+    const Eigen::Vector3d P1 = P + H;
+    c.T1 = P1.norm();
+    c.u1 = c.T1 > 0.0 ? Eigen::Vector3d(P1 / c.T1) : Eigen::Vector3d(0.0, 0.0, -1.0);
+    c.r1 = top0 + rope_.length() * (1.0 + c.T1 / rope_.axialStiffness()) * c.u1;
+    c.r2 = c.r1;
+    if (rigging_) {
+      const Eigen::Vector3d B = P2 + H;
+      c.T2 = B.norm();
+      c.u2 = c.T2 > 0.0 ? Eigen::Vector3d(B / c.T2) : Eigen::Vector3d(0.0, 0.0, -1.0);
+      c.r2 = c.r1 + rigging_->length() * (1.0 + c.T2 / rigging_->axialStiffness()) * c.u2;
+    }
+    return c;
+  };
+  auto angle = [&](const Chain& c) {
+    const Eigen::Vector3d d = c.r2 - top0;
+    return std::atan2(d.dot(horiz), -d.z());
+  };
+  Eigen::Vector3d H = Eigen::Vector3d::Zero();
+  if (swing_rad != 0.0) {
+    // Without a rigging, exactly: the bar along u, T = P_z / u_z, H = T u - P. With one, H
+    // cancels the loads' horizontal part (wind) and pushes along the azimuth by h, h by secant
+    // iterations on the chord's angle from there.
+    const Eigen::Vector3d u = swingDirection(swing_rad, az_rad);
+    H = P.z() / u.z() * u - P;
+    if (rigging_) {
+      const Eigen::Vector3d Ph(P.x(), P.y(), 0.0);
+      auto error = [&](double h) { return angle(chain(h * horiz - Ph)) - swing_rad; };
+      double h0 = H.dot(horiz) + Ph.dot(horiz), h1 = 1.01 * h0 + 1e-9;
+      double e0 = error(h0), e1 = error(h1);
+      for (int it = 0; it < 50 && std::abs(e1) > 1e-14; ++it) {
+        const double h2 = h1 - e1 * (h1 - h0) / (e1 - e0);
+        h0 = h1;
+        e0 = e1;
+        h1 = h2;
+        e1 = error(h1);
+      }
+      if (!(std::abs(e1) < 1e-10)) throw NumericalFailure("swing equilibrium: chord angle not reached");
+      H = h1 * horiz - Ph;
+    }
+  }
+  const Chain c = chain(H);
   CoupledState s;
-  s.lambda = F.head<3>() + T * u;
+  s.lambda = F.head<3>() + c.T1 * c.u1;
   s.z = Eigen::VectorXd::Zero(m);
   if (m > 0) {
     // K z = D^T lambda + f_z: the rope's pull and the loads on the structure itself (wind).
@@ -45,32 +124,35 @@ CoupledState PendulumSolver::solveSwingEquilibrium(double swing_rad, double az_r
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(m);
     s.z = support_.solvePointForce(s.lambda) + support_.solve(-support_.internalForce(zero, zero, zero));
   }
-  const double l = rope_.length() * (1.0 + T / rope_.axialStiffness());
-  s.q = PendulumRope::straight(support_.point(s.z), u, l);
-  s.v = s.qdd = s.a = Eigen::VectorXd::Zero(PendulumRope::kDofs);
+  // The support's deflection moves the whole chain with the top point.
+  const Eigen::Vector3d shift = support_.point(s.z) - top0;
+  s.q.resize(dofs());
+  s.q.head<3>() = top0 + shift;
+  s.q.segment<3>(3) = c.r1 + shift;
+  if (rigging_) s.q.tail<3>() = c.r2 + shift;
+  s.v = s.qdd = s.a = Eigen::VectorXd::Zero(dofs());
   s.zd = s.zdd = s.za = Eigen::VectorXd::Zero(m);
   if (holding_force) *holding_force = swing_rad == 0.0 ? Eigen::Vector3d::Zero() : H;
   return s;
 }
 
 void PendulumSolver::initializeAccelerations(CoupledState& s) {
-  const int m = support_.size();
+  const int m = support_.size(), n = dofs();
   prepareSupportState(support_, s);
   const Eigen::Matrix3d G = support_.setIterationWeights(1.0, 0.0, 0.0);
-  Vector6 Q, Qd;
-  rope_.elasticForce(s.q, Q);
-  rope_.dampingForce(damping_, s.q, s.v, Qd);
-  Matrix9 A = Matrix9::Zero();
-  A.topLeftCorner<6, 6>() = rope_.massMatrix();
-  A.block<3, 3>(0, 6) = A.block<3, 3>(6, 0) = Eigen::Matrix3d::Identity();
+  VectorN Q, Qd;
+  forces(s.q, s.v, Q, Qd, nullptr, nullptr);
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n + 3, n + 3);
+  A.topLeftCorner(n, n) = massMatrix();
+  A.block<3, 3>(0, n) = A.block<3, 3>(n, 0) = Eigen::Matrix3d::Identity();
   A.bottomRightCorner<3, 3>() = -G;
-  Vector9 rhs;
-  rhs.head<6>() = rope_.gravityForce() - Q - Qd;
+  Eigen::VectorXd rhs(n + 3);
+  rhs.head(n) = appliedForce() - Q - Qd;
   Eigen::VectorXd Azr, rz;
   if (m > 0) rz = -support_.internalForce(s.z, s.zd, s.zdd);
   rhs.tail<3>() = condenseSupport(support_, Eigen::Vector3d::Zero(), rz, Azr);
-  const Vector9 x = A.partialPivLu().solve(rhs);
-  storeConsistentAccelerations(support_, x.head<6>(), x.tail<3>(), Azr, s);
+  const Eigen::VectorXd x = A.partialPivLu().solve(rhs);
+  storeConsistentAccelerations(support_, x.head(n), x.tail<3>(), Azr, s);
 }
 
 void PendulumSolver::step(CoupledState& s) {
@@ -80,24 +162,27 @@ void PendulumSolver::step(CoupledState& s) {
 }
 
 bool PendulumSolver::tryStep(CoupledState& s, double h, std::string& why) {
-  const Matrix6& M = rope_.massMatrix();
+  const int n = dofs();
+  const MatrixN M = massMatrix();
+  const VectorN F = appliedForce();
+  using MatrixA = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 12, 12>;
+  using VectorA = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 12, 1>;
   const RopeIncrement increment = [&](const CoupledState& x, const NewtonWeights& w,
                                       const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
                                       Eigen::Vector3d& dmu, std::string&) {
-    Vector6 Q, Qd;
-    Matrix6 K, Cd;
-    rope_.elasticForce(x.q, Q, &K);
-    rope_.dampingForce(damping_, x.q, x.v, Qd, &Cd);
-    Matrix9 A = Matrix9::Zero();
-    A.topLeftCorner<6, 6>() = w.mass * M + w.stiffness * K + w.damping * Cd;
-    A.block<3, 3>(0, 6) = A.block<3, 3>(6, 0) = Eigen::Matrix3d::Identity();
+    VectorN Q, Qd;
+    MatrixN K, Cd;
+    forces(x.q, x.v, Q, Qd, &K, &Cd);
+    MatrixA A = MatrixA::Zero(n + 3, n + 3);
+    A.topLeftCorner(n, n) = w.mass * M + w.stiffness * K + w.damping * Cd;
+    A.block<3, 3>(0, n) = A.block<3, 3>(n, 0) = Eigen::Matrix3d::Identity();
     A.bottomRightCorner<3, 3>() = -w.G;
-    Vector9 rhs;
-    rhs.head<6>() = -w.stiffness * (M * x.qdd + Q + Qd - rope_.gravityForce());
+    VectorA rhs(n + 3);
+    rhs.head(n) = -w.stiffness * (M * x.qdd + Q + Qd - F);
     rhs.head<3>() -= w.stiffness * x.lambda;
     rhs.tail<3>() = rc;
-    const Vector9 dx = Eigen::PartialPivLU<Matrix9>(A).solve(rhs);
-    dq = dx.head<6>();
+    const VectorA dx = Eigen::PartialPivLU<MatrixA>(A).solve(rhs);
+    dq = dx.head(n);
     dmu = dx.tail<3>();
     return true;
   };
@@ -105,9 +190,9 @@ bool PendulumSolver::tryStep(CoupledState& s, double h, std::string& why) {
 }
 
 double PendulumSolver::energy(const CoupledState& s) const {
-  const Vector6 q = s.q, v = s.v;
-  return 0.5 * v.dot(rope_.massMatrix() * v) + rope_.elasticEnergy(q) -
-         rope_.gravityForce().dot(q) + support_.energy(s.z, s.zd);
+  double U = rope_.elasticEnergy(s.q.head<6>());
+  if (rigging_) U += rigging_->elasticEnergy(s.q.tail<6>());
+  return 0.5 * s.v.dot(massMatrix() * s.v) + U - appliedForce().dot(s.q) + support_.energy(s.z, s.zd);
 }
 
 double PendulumSolver::topTension(const CoupledState& s) const {

@@ -11,13 +11,21 @@
 namespace crane_twin {
 
 void rotateRopeAboutTop(Eigen::VectorXd& q, Eigen::VectorXd& v, const Eigen::Vector3d& dp,
-                        const Eigen::Vector3d& dv) {
-  if (q.size() < 12 || q.size() % 6 != 0 || v.size() != q.size()) {
-    throw std::invalid_argument("rotateRopeAboutTop: needs ANCF coordinates, 6 per node");
+                        const Eigen::Vector3d& dv, std::vector<bool> position_blocks) {
+  if (position_blocks.empty()) {
+    if (q.size() < 12 || q.size() % 6 != 0) {
+      throw std::invalid_argument("rotateRopeAboutTop: needs ANCF coordinates, 6 per node");
+    }
+    for (int b = 0; 3 * b < q.size(); ++b) position_blocks.push_back(b % 2 == 0);
   }
-  const int nodes = static_cast<int>(q.size() / 6);
+  const int blocks = static_cast<int>(position_blocks.size());
+  if (v.size() != q.size() || q.size() != 3 * blocks || blocks < 2 || !position_blocks[0]) {
+    throw std::invalid_argument("rotateRopeAboutTop: coordinates and their blocks differ");
+  }
+  int end = blocks - 1;
+  while (!position_blocks[end]) --end;
   const Eigen::Vector3d top = q.head<3>(), v_top = v.head<3>();
-  const Eigen::Vector3d rho = q.segment<3>(6 * (nodes - 1)) - top;
+  const Eigen::Vector3d rho = q.segment<3>(3 * end) - top;
   const double rho2 = rho.squaredNorm();
   if (!(rho2 > 0.0)) throw std::invalid_argument("rotateRopeAboutTop: rope end at its top");
   const Eigen::Vector3d theta = rho.cross(dp) / rho2;
@@ -25,22 +33,26 @@ void rotateRopeAboutTop(Eigen::VectorXd& q, Eigen::VectorXd& v, const Eigen::Vec
   const Eigen::Matrix3d R =
       angle > 0.0 ? Eigen::AngleAxisd(angle, theta / angle).toRotationMatrix()
                   : Eigen::Matrix3d::Identity();
-  const Eigen::Vector3d v_rel_end = v.segment<3>(6 * (nodes - 1)) - v_top;
+  const Eigen::Vector3d v_rel_end = v.segment<3>(3 * end) - v_top;
   const Eigen::Vector3d u = dv - (R - Eigen::Matrix3d::Identity()) * v_rel_end;
   const Eigen::Vector3d rho_new = R * rho;
   const Eigen::Vector3d w = rho_new.cross(u) / rho_new.squaredNorm();
-  for (int j = 0; j < nodes; ++j) {
-    const Eigen::Vector3d r = R * (q.segment<3>(6 * j) - top);
-    const Eigen::Vector3d s = R * q.segment<3>(6 * j + 3);
-    q.segment<3>(6 * j) = top + r;
-    q.segment<3>(6 * j + 3) = s;
-    v.segment<3>(6 * j) = v_top + R * (v.segment<3>(6 * j) - v_top) + w.cross(r);
-    v.segment<3>(6 * j + 3) = R * v.segment<3>(6 * j + 3) + w.cross(s);
+  for (int b = 0; b < blocks; ++b) {
+    if (position_blocks[b]) {
+      const Eigen::Vector3d r = R * (q.segment<3>(3 * b) - top);
+      q.segment<3>(3 * b) = top + r;
+      v.segment<3>(3 * b) = v_top + R * (v.segment<3>(3 * b) - v_top) + w.cross(r);
+    } else {
+      const Eigen::Vector3d s = R * q.segment<3>(3 * b);
+      q.segment<3>(3 * b) = s;
+      v.segment<3>(3 * b) = R * v.segment<3>(3 * b) + w.cross(s);
+    }
   }
 }
 
 void applyTwinCorrection(Simulation& sim, const SwayUpdate& u, const std::vector<int>& modes) {
   CoupledState f = sim.fullState();
+  const std::vector<bool> blocks = sim.fullStatePositionBlocks();
   if (!modes.empty()) {
     if (u.structure_correction.size() != static_cast<int>(modes.size()) ||
         u.structure_rate_correction.size() != static_cast<int>(modes.size())) {
@@ -58,14 +70,16 @@ void applyTwinCorrection(Simulation& sim, const SwayUpdate& u, const std::vector
     f.zd += dzd;
     // The rope goes with its top: translated by the trolley point's motion.
     const Eigen::Vector3d dp = sim.support().pointMotion(dz), dv = sim.support().pointMotion(dzd);
-    for (int j = 0; 6 * j < f.q.size(); ++j) {
-      f.q.segment<3>(6 * j) += dp;
-      f.v.segment<3>(6 * j) += dv;
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      if (!blocks[b]) continue;
+      f.q.segment<3>(3 * b) += dp;
+      f.v.segment<3>(3 * b) += dv;
     }
   }
   rotateRopeAboutTop(f.q, f.v,
                      Eigen::Vector3d(u.position_correction.x(), u.position_correction.y(), 0.0),
-                     Eigen::Vector3d(u.velocity_correction.x(), u.velocity_correction.y(), 0.0));
+                     Eigen::Vector3d(u.velocity_correction.x(), u.velocity_correction.y(), 0.0),
+                     blocks);
   sim.setMotion(f);
 }
 

@@ -14,9 +14,10 @@
 //   counter_jib                fit (Umeyama, no scaling) of its deformed nodes onto the
 //                              undeformed ones, so a rigid picture of the part drawn in
 //                              undeformed slewing coordinates sits on the deformed structure;
-//   hook, payload              in the world frame at the rope's end node, z axis up along the
-//                              rope's last sampled segment (its end tangent). The model lumps hook block
-//                              and payload into one end mass, so both frames share that point.
+//   hook, payload              in the world frame, z axis up along the rope's sampled segment
+//                              above the point: the payload at the chain's end node, the hook
+//                              block at the hoist rope's end. Without a rigging (hook.rigging_length)
+//                              the model lumps them into one end mass and both frames share it.
 #pragma once
 
 #include <Eigen/Geometry>

@@ -88,8 +88,16 @@ struct Scene {
   Eigen::Vector3d site_position = Eigen::Vector3d::Zero();
   double site_yaw_deg = 0.0;
 
-  /// Hook block mass from the crane file (0 with crane: none) [kg].
-  double hookBlockMass() const { return crane ? crane->hook_block_mass : 0.0; }
+  /// `hook: {mass, rigging_length}` (docs/model.md "Hook block"): the hook block's mass [kg]
+  /// (default the crane file's, 0 with crane: none) and the rigging's unstretched length [m]
+  /// from the hook to the payload (0: hook block and payload lumped at the rope's end).
+  double hook_mass = 0.0;
+  double hook_rigging_length = 0.0;
+
+  /// Hook block mass [kg] (hook.mass).
+  double hookBlockMass() const { return hook_mass; }
+  /// The payload hangs on its own rigging under the hook block (a double pendulum).
+  bool hasRigging() const { return hook_rigging_length > 0.0; }
 };
 
 /// `random_commands:` of a scene (docs/stability.md hard case): a seeded, reproducible schedule.

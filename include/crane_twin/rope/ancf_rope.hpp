@@ -8,9 +8,17 @@
 //   M q'' + Q(q) = F_g,   M = sum_k int rho A S^T S dx + m_top (I at r_0) + m_end (I at r_n),
 //   F_g = M g_field
 // (constant: gravity is a uniform field), Q = dU/dq summed over elements.
+//
+// With a rigging (setRigging, docs/model.md "Hook block"): one more element of the rigging's own
+// length and material, hinged at the hook: it shares the hook node's position r_n but has its own
+// top slope s_h, so q = [r_0, r_0x, ..., r_n, r_nx, s_h, r_p, r_px] (6 (n + 1) + 9), the rigging
+// element's coordinates [r_n, s_h, r_p, r_px]. The hook block is a point mass m_hook at r_n, the
+// payload m_end at r_p (the chain's last node, still the last 6 coordinates). Hoisting
+// (setLength) rescales the hoist rope's elements only.
 #pragma once
 
 #include <Eigen/Sparse>
+#include <array>
 #include <vector>
 
 #include "crane_twin/elements/ancf_cable_element.hpp"
@@ -25,10 +33,38 @@ class AncfRope {
            double bending_stiffness, double end_mass, const Eigen::Vector3d& gravity,
            double top_mass = 0.0);
 
-  int elements() const { return elements_; }
-  int nodes() const { return elements_ + 1; }
-  int dofs() const { return 6 * (elements_ + 1); }
+  /// Elements of the chain: the hoist rope's and, with a rigging, the rigging's one.
+  int elements() const { return elements_ + (hasRigging() ? 1 : 0); }
+  int hoistElements() const { return elements_; }
+  /// Nodes with a position: the hoist rope's n + 1 and, with a rigging, the payload's.
+  int nodes() const { return elements() + 1; }
+  int dofs() const { return 6 * (elements_ + 1) + (hasRigging() ? 9 : 0); }
+  /// Index of node j's position in q (6 j, the payload's after the rigging's top slope).
+  int positionIndex(int j) const { return j <= elements_ ? 6 * j : dofs() - 6; }
+  Eigen::Vector3d position(const Eigen::VectorXd& q, int j) const {
+    return q.segment<3>(positionIndex(j));
+  }
+  /// Indices in q of element k's 12 coordinates [r_a, r_a,x, r_b, r_b,x].
+  std::array<int, 12> elementDofs(int k) const;
+  Vector12 elementCoordinates(const Eigen::VectorXd& q, int k) const;
+  /// The hoist rope's unstretched (hanging) length [m], without the rigging.
   double length() const { return element_.length * elements_; }
+  /// Element k's material and length (the hoist rope's, or the rigging's for the last one).
+  const AncfCableProperties& element(int k) const {
+    return k < elements_ ? element_ : rigging_;
+  }
+  /// The payload on a rigging of unstretched length `length` [m] > 0 under the hook block of mass
+  /// `hook_mass` [kg] > 0 (docs/model.md "Hook block"): the rigging is one tension-only element of
+  /// mass_per_length [kg/m], axial_stiffness EA [N] and bending_stiffness EI [N m^2] (> 0: the
+  /// payload end's slope needs it). Rebuilds M and F_g. Throws std::invalid_argument otherwise.
+  void setRigging(double length, double hook_mass, double mass_per_length, double axial_stiffness,
+                  double bending_stiffness);
+  bool hasRigging() const { return rigging_.length > 0.0; }
+  double hookMass() const { return hook_mass_; }
+  /// The hook block's node: the hoist rope's last (the chain's end without a rigging).
+  int hookNode() const { return elements_; }
+  /// Points of the chain (sampleRopeCurve with each element's own length).
+  std::vector<Eigen::Vector3d> sampleCurve(const Eigen::VectorXd& q, int per_element) const;
   double endMass() const { return end_mass_; }
   double topMass() const { return top_mass_; }
   const Eigen::Vector3d& gravity() const { return gravity_; }
@@ -60,6 +96,9 @@ class AncfRope {
   /// Rescale a coordinate-like vector (q, v, q'') so the rope's geometry is unchanged under a
   /// length change from `from` to `to`: positions stay, slopes r_x scale by from / to.
   static void rescaleSlopes(Eigen::VectorXd& x, double from, double to);
+  /// rescaleSlopes on the hoist rope's nodes only (the junction included): a rigging's length
+  /// does not change, so the payload node's slope stays.
+  void rescaleHoistSlopes(Eigen::VectorXd& x, double from, double to) const;
 
   /// Elastic force Q(q); appends the tangent K(q) as triplets when `tangent` is not null.
   void elasticForce(const Eigen::VectorXd& q, Eigen::VectorXd& Q,
@@ -68,10 +107,11 @@ class AncfRope {
   SparseMatrix tangentStiffness(const Eigen::VectorXd& q, Eigen::VectorXd* force = nullptr) const;
   double elasticEnergy(const Eigen::VectorXd& q) const;
 
+  /// Node `node`'s position in a chain without a rigging (position() in general).
   static Eigen::Vector3d nodePosition(const Eigen::VectorXd& q, int node) {
     return q.segment<3>(6 * node);
   }
-  /// Smallest nodal axial strain min_j |r_j,x| - 1 (the slack checks of the reduced models).
+  /// Smallest nodal axial strain (a chain without a rigging) min_j |r_j,x| - 1 (the slack checks of the reduced models).
   static double minNodalStrain(const Eigen::VectorXd& q);
   /// Kinetic energy of the velocities v relative to the top node's, 1/2 w^T M w with
   /// w_j = v_j - v_0 on every node position [J] (what a projection may drop).
@@ -90,6 +130,8 @@ class AncfRope {
   AncfCableProperties element_;
   double end_mass_, top_mass_;
   double rope_axial_stiffness_, reeving_length_ = 0.0;
+  AncfCableProperties rigging_{0.0, 0.0, 1.0, 0.0, 5, true};  ///< length 0: no rigging
+  double hook_mass_ = 0.0;
   Eigen::Vector3d gravity_;
   SparseMatrix M_;
   Eigen::VectorXd Fg_;

@@ -33,7 +33,10 @@ struct CraneModel {
   Scene scene;
   std::optional<TowerCraneStructure> structure;  ///< built unless crane: none
   EquivalentRope rope;
-  double end_mass = 0.0;  ///< payload + hook block at the rope end [kg]
+  double end_mass = 0.0;  ///< at the chain's end node [kg]: payload + hook block, or the payload alone under a rigging
+  double hook_mass = 0.0; ///< with a rigging (hook.rigging_length): the hook block at the hoist rope's end [kg]
+  /// Point masses the hoist rope carries [kg]: payload and hook block.
+  double hangingPointMass() const { return end_mass + hook_mass; }
   /// With structure.geometric_stiffness: each member's axial force under the self-weight and
   /// the static hanging load [N] (tension positive); structure->K then holds K + K_G.
   Eigen::VectorXd structure_axial_forces;

@@ -31,7 +31,9 @@ class CraneSimulation final : public SupportedRopeSimulation {
   void initialize() override;
   void step() override;
   int ropeNodes() const override { return rope_->nodes(); }
-  Eigen::Vector3d ropeNode(int j) const override { return AncfRope::nodePosition(state_.q, j); }
+  Eigen::Vector3d ropeNode(int j) const override { return rope_->position(state_.q, j); }
+  int hookNode() const override { return rope_->hookNode(); }
+  std::vector<bool> fullStatePositionBlocks() const override;
   std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override;
   long halvedSteps() const override { return solver_->halvedSteps(); }
   const AncfRope& rope() const { return *rope_; }

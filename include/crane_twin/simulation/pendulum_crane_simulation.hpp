@@ -19,7 +19,12 @@ class PendulumCraneSimulation final : public SupportedRopeSimulation {
 
   void initialize() override;
   void step() override;
-  int ropeNodes() const override { return 2; }
+  /// Top and end point, or top, hook block and payload with a rigging.
+  int ropeNodes() const override { return rigging_ ? 3 : 2; }
+  int hookNode() const override { return 1; }
+  std::vector<bool> fullStatePositionBlocks() const override {
+    return std::vector<bool>(ropeNodes(), true);
+  }
   Eigen::Vector3d ropeNode(int j) const override { return state_.q.segment<3>(3 * j); }
   /// The straight chord, per_element points and the end point.
   std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override;
@@ -34,16 +39,22 @@ class PendulumCraneSimulation final : public SupportedRopeSimulation {
   Eigen::VectorXd straightRope(const Eigen::Vector3d& top,
                                const Eigen::Vector3d& dir) const override;
   void initializeAccelerations(CoupledState& s) override { solver_->initializeAccelerations(s); }
-  int endPointIndex() const override { return 3; }
+  int endPointIndex() const override { return rigging_ ? 6 : 3; }
   double topTensionOf(const CoupledState& s) const override { return solver_->topTension(s); }
   double energyOf(const CoupledState& s) const override { return solver_->energy(s); }
   double ropeLength() const override { return rope_->length(); }
   void setRopeWind(const Eigen::Vector3d& per_length, const Eigen::Vector3d& end_force) override {
-    rope_->setExternalLoad(per_length, end_force);
+    if (!rigging_) {
+      rope_->setExternalLoad(per_length, end_force);
+      return;
+    }
+    rope_->setExternalLoad(per_length, Eigen::Vector3d::Zero());  // the rigging takes no wind
+    rigging_->setExternalLoad(Eigen::Vector3d::Zero(), end_force);
   }
 
  private:
   std::unique_ptr<PendulumRope> rope_;
+  std::unique_ptr<PendulumRope> rigging_;  ///< hook block to payload (hook.rigging_length > 0)
   std::unique_ptr<PendulumSolver> solver_;
 };
 

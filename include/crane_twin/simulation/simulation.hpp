@@ -65,6 +65,9 @@ class Simulation {
   virtual void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab, Eigen::Vector3d& jib_tip) const = 0;
   virtual int ropeNodes() const = 0;
   virtual Eigen::Vector3d ropeNode(int j) const = 0;
+  /// The rope node of the hook block: the chain's last (the payload's) unless the payload hangs
+  /// on a rigging under it (docs/model.md "Hook block").
+  virtual int hookNode() const { return ropeNodes() - 1; }
   /// Operator command from now on, overriding the scene's schedule (the node-facing API,
   /// docs/model.md "Drives"). Throws std::invalid_argument for a non-finite value and InputError
   /// for what is not built; the state is unchanged then.
@@ -76,6 +79,10 @@ class Simulation {
   /// The state in the rope model's own full coordinates (ANCF q, or the pendulum's two points;
   /// the reduced model expands its own: O(n r)) and the support's coordinates z.
   virtual CoupledState fullState() const = 0;
+  /// fullState().q read as 3-vectors: true where a block is a point, false for a slope. Default
+  /// ANCF's 6 per node (point, slope); the pendulum's are all points; a rigging adds its top
+  /// slope (AncfRope).
+  virtual std::vector<bool> fullStatePositionBlocks() const;
   /// The drives' state (slewing angle, trolley radius, hoist length, speeds, flags).
   virtual const CraneDrives& drives() const = 0;
   /// What holds the rope (structure, rigid trolley point or anchor).

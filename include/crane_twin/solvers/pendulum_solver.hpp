@@ -9,6 +9,10 @@
 //   [ C_q                              -G    ],   G = D A_z^-1 D^T,
 // solved by a pivoting dense LU. Where Newton fails (a slack rope snapping taut) the step is
 // halved, as at full order. Statics are closed form: the bar is straight and the support linear.
+//
+// With a rigging (setRigging, docs/model.md "Hook block"): a second bar from the hoist bar's end
+// (the hook block) to the payload, q = [r_0; r_1; r_2] (9), its mass, load, force and tangent
+// added on [r_1; r_2]; the iteration matrix is 12 x 12.
 #pragma once
 
 #include <string>
@@ -38,6 +42,11 @@ class PendulumSolver {
   /// One step of the time step, halved where Newton fails (kMaxHalvings).
   /// Throws NumericalFailure naming the time and the reason; s is then left unchanged.
   void step(CoupledState& s);
+  /// The payload on a rigging bar under the rope's end (its top mass 0, its end mass the
+  /// payload's, tension-only), referenced: it must outlive the solver. Before any state is built.
+  void setRigging(const PendulumRope* rigging) { rigging_ = rigging; }
+  /// Rope coordinates: 6, or 9 with a rigging.
+  int dofs() const { return rigging_ ? 9 : 6; }
   /// Axial damping coefficient c [s] (0: none). Throws std::invalid_argument for c < 0.
   void setRopeDamping(double c);
   static constexpr int kMaxHalvings = 6;
@@ -51,8 +60,17 @@ class PendulumSolver {
   double constraintError(const CoupledState& s) const;
 
  private:
+  using VectorN = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 9, 1>;
+  using MatrixN = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 9, 9>;
   bool tryStep(CoupledState& s, double h, std::string& why);
+  /// The chain's mass, applied load, elastic force (tangent into *K) and damping force (dQ_d/dv
+  /// into *C): the rope bar on [r_0; r_1], the rigging's on [r_1; r_2].
+  MatrixN massMatrix() const;
+  VectorN appliedForce() const;
+  void forces(const VectorN& q, const VectorN& v, VectorN& Q, VectorN& Qd, MatrixN* K,
+              MatrixN* C) const;
   const PendulumRope& rope_;
+  const PendulumRope* rigging_ = nullptr;
   RopeSupport& support_;
   GeneralizedAlpha ga_;
   double h_;

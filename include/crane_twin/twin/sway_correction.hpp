@@ -18,10 +18,14 @@
 
 namespace crane_twin {
 
-/// The rope's full coordinates (q, v) turned about the top node (ANCF: 6 per node).
-/// Throws std::invalid_argument for sizes that are not 6 per node (>= 2 nodes).
+/// The rope's full coordinates (q, v) turned rigidly about the top (q's first 3) so that the
+/// end (the last position block) moves by dp's part across the chord and gains dv's. q is read
+/// as 3-vectors: `position_blocks[b]` says block b is a point (turned about the top), otherwise
+/// a direction (a slope, turned); empty: ANCF's 6 per node, point then slope
+/// (Simulation::fullStatePositionBlocks gives any model's). Throws std::invalid_argument for
+/// sizes that do not fit or an end at the top.
 void rotateRopeAboutTop(Eigen::VectorXd& q, Eigen::VectorXd& v, const Eigen::Vector3d& dp,
-                        const Eigen::Vector3d& dv);
+                        const Eigen::Vector3d& dv, std::vector<bool> position_blocks = {});
 
 /// The whole update: modal coordinates `modes` (indices into the support's z) by the update's
 /// structure corrections (none for an empty list), then the swing. Throws what
