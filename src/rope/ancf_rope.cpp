@@ -73,17 +73,19 @@ void AncfRope::assembleMass() {
   SparseAssembler hoist(dofs()), fixed(dofs());
   std::vector<int> eq(12);
   const Matrix12 Me = ancfMassMatrix(element_);
-  for (int k = 0; k < elements(); ++k) {
-    const std::array<int, 12> dofs = elementDofs(k);
-    eq.assign(dofs.begin(), dofs.end());
-    if (k < elements_) hoist.add(Me, eq);
-    else fixed.add(ancfMassMatrix(rigging_), eq);
+  for (int k = 0; k < elements_; ++k) {
+    for (int i = 0; i < 12; ++i) eq[i] = 6 * k + i;
+    hoist.add(Me, eq);
   }
-  const int end = positionIndex(nodes() - 1);
   for (int d = 0; d < 3; ++d) {
-    fixed.addEntry(end + d, end + d, end_mass_);
     if (top_mass_ != 0.0) fixed.addEntry(d, d, top_mass_);
+    // With a rigging the payload is the bar's end mass; the hook block sits on the hook node.
     if (hasRigging()) fixed.addEntry(6 * elements_ + d, 6 * elements_ + d, hook_mass_);
+    else fixed.addEntry(6 * elements_ + d, 6 * elements_ + d, end_mass_);
+  }
+  if (hasRigging()) {
+    const std::array<int, 6> r = riggingDofs();
+    fixed.add(rigging_->massMatrix(), std::vector<int>(r.begin(), r.end()));
   }
   const SparseMatrix Mh = hoist.build(), Mf = fixed.build();
   M_ = Mh + Mf;
@@ -135,14 +137,25 @@ void AncfRope::elasticForce(const Eigen::VectorXd& q, Eigen::VectorXd& Q,
   Q.setZero(dofs());
   Vector12 Qe;
   Matrix12 Ke;
-  for (int k = 0; k < elements(); ++k) {
-    const std::array<int, 12> idx = elementDofs(k);
-    ancfElasticForce(element(k), elementCoordinates(q, k), Qe, tangent ? &Ke : nullptr);
-    for (int i = 0; i < 12; ++i) Q(idx[i]) += Qe(i);
+  for (int k = 0; k < elements_; ++k) {
+    ancfElasticForce(element_, q.segment<12>(6 * k), Qe, tangent ? &Ke : nullptr);
+    Q.segment<12>(6 * k) += Qe;
     if (tangent) {
+      const int o = 6 * k;
       for (int j = 0; j < 12; ++j)
-        for (int i = 0; i < 12; ++i) tangent->emplace_back(idx[i], idx[j], Ke(i, j));
+        for (int i = 0; i < 12; ++i) tangent->emplace_back(o + i, o + j, Ke(i, j));
     }
+  }
+  if (!hasRigging()) return;
+  const std::array<int, 6> r = riggingDofs();
+  Vector6 qb, Qb;
+  Matrix6 Kb;
+  for (int i = 0; i < 6; ++i) qb(i) = q(r[i]);
+  rigging_->elasticForce(qb, Qb, tangent ? &Kb : nullptr);
+  for (int i = 0; i < 6; ++i) Q(r[i]) += Qb(i);
+  if (tangent) {
+    for (int j = 0; j < 6; ++j)
+      for (int i = 0; i < 6; ++i) tangent->emplace_back(r[i], r[j], Kb(i, j));
   }
 }
 
@@ -158,7 +171,13 @@ SparseMatrix AncfRope::tangentStiffness(const Eigen::VectorXd& q, Eigen::VectorX
 
 double AncfRope::elasticEnergy(const Eigen::VectorXd& q) const {
   double U = 0.0;
-  for (int k = 0; k < elements(); ++k) U += ancfElasticEnergy(element(k), elementCoordinates(q, k));
+  for (int k = 0; k < elements_; ++k) U += ancfElasticEnergy(element_, q.segment<12>(6 * k));
+  if (hasRigging()) {
+    const int n = 6 * elements_;
+    Vector6 qb;
+    qb << q.segment<3>(n), q.tail<3>();
+    U += rigging_->elasticEnergy(qb);
+  }
   return U;
 }
 
@@ -169,7 +188,7 @@ Eigen::VectorXd AncfRope::stretchedStraight(const Eigen::Vector3d& top, const Ei
   // and the hook block's adds at the junction (the field force_per_length / mu per kilogram).
   double hook_force = end_force;
   const double field = element_.mass_per_length > 0.0 ? force_per_length / element_.mass_per_length : 0.0;
-  if (hasRigging()) hook_force += field * (rigging_.mass_per_length * rigging_.length + hook_mass_);
+  if (hasRigging()) hook_force += field * (rigging_->massPerLength() * rigging_->length() + hook_mass_);
   Eigen::VectorXd q(dofs());
   Eigen::Vector3d r = top;
   for (int j = 0; j <= elements_; ++j) {
@@ -180,13 +199,11 @@ Eigen::VectorXd AncfRope::stretchedStraight(const Eigen::Vector3d& top, const Ei
     r += (1.0 + Tmid / EA) * l * d;
   }
   if (hasRigging()) {
-    // The rigging stretched by its mean tension, its slopes by the tension at each end.
-    const double Tr = end_force + 0.5 * field * rigging_.mass_per_length * rigging_.length;
-    const double Ttop = end_force + field * rigging_.mass_per_length * rigging_.length;
-    const int hook = 6 * elements_;
-    q.segment<3>(hook + 6) = (1.0 + Ttop / rigging_.axial_stiffness) * d;
-    q.segment<3>(hook + 9) = q.segment<3>(hook) + (1.0 + Tr / rigging_.axial_stiffness) * rigging_.length * d;
-    q.segment<3>(hook + 12) = (1.0 + end_force / rigging_.axial_stiffness) * d;
+    // The bar's uniform tension: the payload's load and half the bar's weight (its consistent
+    // gravity puts half on each end).
+    const double Tr = end_force + 0.5 * field * rigging_->massPerLength() * rigging_->length();
+    q.tail<3>() = q.segment<3>(6 * elements_) +
+                  (1.0 + Tr / rigging_->axialStiffness()) * rigging_->length() * d;
   }
   return q;
 }
@@ -197,26 +214,18 @@ Eigen::VectorXd AncfRope::straight(const Eigen::Vector3d& top, const Eigen::Vect
     q.segment<3>(6 * j) = top + element_.length * j * d;
     q.segment<3>(6 * j + 3) = d;
   }
-  if (hasRigging()) q.tail<9>() << d, top + (length() + rigging_.length) * d, d;
+  if (hasRigging()) q.tail<3>() = top + (length() + rigging_->length()) * d;
   return q;
 }
 
 void AncfRope::setRigging(double length, double hook_mass, double mass_per_length,
-                          double axial_stiffness, double bending_stiffness) {
-  auto require = [](bool ok, const char* what) {
-    if (!ok) throw std::invalid_argument(std::string("rigging: ") + what);
-  };
-  require(std::isfinite(length) && length > 0.0, "length must be finite and > 0");
-  require(std::isfinite(hook_mass) && hook_mass > 0.0, "hook block mass must be finite and > 0");
-  require(std::isfinite(mass_per_length) && mass_per_length >= 0.0, "mass per length must be >= 0");
-  require(std::isfinite(axial_stiffness) && axial_stiffness > 0.0, "axial stiffness must be > 0");
-  require(std::isfinite(bending_stiffness) && bending_stiffness > 0.0, "bending stiffness must be > 0");
-  rigging_.length = length;
-  rigging_.mass_per_length = mass_per_length;
-  rigging_.axial_stiffness = axial_stiffness;
-  rigging_.bending_stiffness = bending_stiffness;
-  rigging_.gauss_points = element_.gauss_points;
-  rigging_.tension_only = true;  // a sling takes no compression
+                          double axial_stiffness) {
+  if (!(std::isfinite(hook_mass) && hook_mass > 0.0)) {
+    throw std::invalid_argument("rigging: hook block mass must be finite and > 0");
+  }
+  // PendulumRope checks length, mass per length and EA; a sling takes no compression.
+  rigging_.emplace(length, mass_per_length, axial_stiffness, end_mass_, gravity_, 0.0);
+  rigging_->setTensionOnly(true);
   hook_mass_ = hook_mass;
   assembleMass();
 }
@@ -224,28 +233,14 @@ void AncfRope::setRigging(double length, double hook_mass, double mass_per_lengt
 std::vector<Eigen::Vector3d> AncfRope::sampleCurve(const Eigen::VectorXd& q, int per_element) const {
   if (!hasRigging()) return sampleRopeCurve(q, element_.length, per_element);
   std::vector<Eigen::Vector3d> points = sampleRopeCurve(q.head(6 * (elements_ + 1)), element_.length, per_element);
-  points.pop_back();  // the hook, first point of the rigging's samples
-  const Vector12 e = elementCoordinates(q, elements_);
-  for (int i = 0; i < per_element; ++i)
-    points.push_back(ancfPosition(e, static_cast<double>(i) / per_element, rigging_.length));
-  points.push_back(q.tail<6>().head<3>());
+  const Eigen::Vector3d hook = points.back(), load = q.tail<3>();
+  for (int i = 1; i <= per_element; ++i) points.push_back(hook + (load - hook) * i / per_element);
   return points;
 }
 
-std::array<int, 12> AncfRope::elementDofs(int k) const {
-  std::array<int, 12> idx;
-  for (int i = 0; i < 12; ++i) idx[i] = 6 * k + i;
-  if (k == elements_) {  // the rigging: [r_n (hook), s_h, r_p, r_px]
-    for (int i = 3; i < 12; ++i) idx[i] = 6 * k + 3 + i;
-  }
-  return idx;
-}
-
-Vector12 AncfRope::elementCoordinates(const Eigen::VectorXd& q, int k) const {
-  if (k < elements_) return q.segment<12>(6 * k);
-  Vector12 e;
-  e << q.segment<3>(6 * k), q.tail<9>();
-  return e;
+std::array<int, 6> AncfRope::riggingDofs() const {
+  const int n = 6 * elements_, p = dofs() - 3;
+  return {n, n + 1, n + 2, p, p + 1, p + 2};
 }
 
 // r(xi) = S(xi) e per element (docs/model.md), xi = k / per_element.

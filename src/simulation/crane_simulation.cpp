@@ -27,11 +27,10 @@ AncfRope sceneRope(const CraneModel& m) {
   rope.setTensionOnly(m.scene.rope.tension_only);
   rope.setReevingLength(m.rope.reeving_equivalent_length);
   // The rigging: one sling leg of the hoist rope's wire (one fall's data, docs/model.md "Hook
-  // block"); its bending stiffness is needed for the payload end's slope even without rope.bending.
+  // block").
   if (m.scene.hasRigging()) {
     const RopeSettings& r = m.scene.rope;
-    rope.setRigging(m.scene.hook_rigging_length, m.hook_mass, r.mass_per_length, r.axial_stiffness,
-                    std::max(r.bending_stiffness, 1e-8 * r.axial_stiffness));
+    rope.setRigging(m.scene.hook_rigging_length, m.hook_mass, r.mass_per_length, r.axial_stiffness);
   }
   return rope;
 }
@@ -130,7 +129,7 @@ void CraneSimulation::initializeAccelerations(CoupledState& s) {
   solver_->initializeAccelerations(s);
 }
 
-int CraneSimulation::endPointIndex() const { return rope_->dofs() - 6; }
+int CraneSimulation::endPointIndex() const { return rope_->positionIndex(rope_->nodes() - 1); }
 
 double CraneSimulation::topTensionOf(const CoupledState& s) const {
   return ropeTopTension(*rope_, s);

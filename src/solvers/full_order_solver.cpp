@@ -21,10 +21,13 @@ FullOrderSolver::FullOrderSolver(const AncfRope& rope, RopeSupport& support,
   // 3 x 3 multiplier block (-G; lower triangle suffices for LDL^T but LU reads it all).
   const int n = rope_.dofs();
   std::vector<Eigen::Triplet<double>> t;
-  for (int k = 0; k < rope_.elements(); ++k) {
-    const std::array<int, 12> idx = rope_.elementDofs(k);
+  for (int k = 0; k < rope_.elements(); ++k)
     for (int j = 0; j < 12; ++j)
-      for (int i = 0; i < 12; ++i) t.emplace_back(idx[i], idx[j], 0.0);
+      for (int i = 0; i < 12; ++i) t.emplace_back(6 * k + i, 6 * k + j, 0.0);
+  if (rope_.hasRigging()) {
+    const std::array<int, 6> r = rope_.riggingDofs();
+    for (int j = 0; j < 6; ++j)
+      for (int i = 0; i < 6; ++i) t.emplace_back(r[i], r[j], 0.0);
   }
   for (int d = 0; d < 3; ++d) {
     t.emplace_back(n + d, d, 1.0);
@@ -41,12 +44,16 @@ FullOrderSolver::FullOrderSolver(const AncfRope& rope, RopeSupport& support,
       mass_value_.push_back(it.value());
     }
   element_index_.reserve(144 * rope_.elements());
-  for (int k = 0; k < rope_.elements(); ++k) {
-    const std::array<int, 12> dofs = rope_.elementDofs(k);
+  for (int k = 0; k < rope_.elements(); ++k)
     for (int j = 0; j < 12; ++j)
       for (int i = 0; i < 12; ++i)
         element_index_.push_back(
-            static_cast<int>(&A_.coeffRef(dofs[i], dofs[j]) - A_.valuePtr()));
+            static_cast<int>(&A_.coeffRef(6 * k + i, 6 * k + j) - A_.valuePtr()));
+  if (rope_.hasRigging()) {
+    const std::array<int, 6> r = rope_.riggingDofs();
+    for (int j = 0; j < 6; ++j)
+      for (int i = 0; i < 6; ++i)
+        rigging_index_.push_back(static_cast<int>(&A_.coeffRef(r[i], r[j]) - A_.valuePtr()));
   }
   ldlt_.analyzePattern(A_);
 }
@@ -76,28 +83,33 @@ void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& 
   Vector12 Qe;
   Matrix12 Ke;
   const int* idx = element_index_.data();
-  const int hoist = rope_.hoistElements();
   for (int k = 0; k < rope_.elements(); ++k, idx += 144) {
-    // The hoist rope's elements are contiguous in q; the rigging's is gathered (AncfRope).
-    const std::array<int, 12> dofs = rope_.elementDofs(k);
-    auto scatter = [&](const Vector12& f) {
-      if (k < hoist) Q.segment<12>(6 * k) += f;
-      else for (int i = 0; i < 12; ++i) Q(dofs[i]) += f(i);
-    };
-    ancfElasticForce(rope_.element(k), rope_.elementCoordinates(q, k), Qe,
-                     stiffWeight != 0.0 ? &Ke : nullptr);
-    scatter(Qe);
+    ancfElasticForce(rope_.element(), q.segment<12>(6 * k), Qe, stiffWeight != 0.0 ? &Ke : nullptr);
+    Q.segment<12>(6 * k) += Qe;
     if (stiffWeight != 0.0) {
       const double* ke = Ke.data();
       for (int e = 0; e < 144; ++e) val[idx[e]] += stiffWeight * ke[e];
     }
     if (rope_damping_ == 0.0) continue;
-    ancfAxialDampingForce(rope_.element(k), rope_damping_, rope_.elementCoordinates(q, k),
-                          rope_.elementCoordinates(v, k), Qe, dampWeight != 0.0 ? &Ke : nullptr);
-    scatter(Qe);
+    ancfAxialDampingForce(rope_.element(), rope_damping_, q.segment<12>(6 * k),
+                          v.segment<12>(6 * k), Qe, dampWeight != 0.0 ? &Ke : nullptr);
+    Q.segment<12>(6 * k) += Qe;
     if (dampWeight == 0.0) continue;
     const double* ce = Ke.data();
     for (int e = 0; e < 144; ++e) val[idx[e]] += dampWeight * ce[e];
+  }
+  if (rope_.hasRigging()) {
+    // The rigging bar on [r_n; r_p] (AncfRope::setRigging), its axial damping as the rope's.
+    const std::array<int, 6> r = rope_.riggingDofs();
+    Vector6 qb, vb, Qb;
+    Matrix6 Kb, Cb;
+    for (int i = 0; i < 6; ++i) qb(i) = q(r[i]), vb(i) = v(r[i]);
+    rope_.rigging().elasticForce(qb, Qb, &Kb);
+    for (int i = 0; i < 6; ++i) Q(r[i]) += Qb(i);
+    rope_.rigging().dampingForce(rope_damping_, qb, vb, Qb, &Cb);
+    for (int i = 0; i < 6; ++i) Q(r[i]) += Qb(i);
+    const Matrix6 Ab = stiffWeight * Kb + dampWeight * Cb;
+    for (int e = 0; e < 36; ++e) val[rigging_index_[e]] += Ab.data()[e];
   }
   for (int d = 0; d < 3; ++d) {
     A_.coeffRef(n + d, d) = 1.0;
@@ -135,7 +147,7 @@ CoupledState FullOrderSolver::solveStatic(const Eigen::VectorXd& q_guess,
   s.z = z_guess.size() == m ? z_guess : Eigen::VectorXd::Zero(m);
   s.zd = s.zdd = s.za = Eigen::VectorXd::Zero(m);
   Eigen::VectorXd Q, F = rope_.gravityForce(), Azr;
-  F.segment<3>(n - 6) += end_force;
+  F.segment<3>(rope_.positionIndex(rope_.nodes() - 1)) += end_force;  // on the payload
   const Eigen::Matrix3d G = support_.setIterationWeights(0.0, 0.0, 1.0);
   // Statics use a pivoting LU: without the mass term the rope block can be semi-definite
   // (bending-only lateral stiffness at low tension), where LDL^T without pivoting stops.
@@ -172,7 +184,7 @@ CoupledState FullOrderSolver::solveSwingEquilibrium(double swing_rad, double az_
   const double W = endW + rope_.element().mass_per_length * rope_.length() * g;
   const Eigen::Vector3d top = support_.point(Eigen::VectorXd::Zero(support_.size()));
   auto chordAngle = [&](const CoupledState& s) {
-    const Eigen::Vector3d c = s.q.segment<3>(rope_.dofs() - 6) - s.q.head<3>();  // the payload
+    const Eigen::Vector3d c = rope_.position(s.q, rope_.nodes() - 1) - s.q.head<3>();  // the payload
     return std::atan2(c.dot(horiz), -c.z());
   };
   // Start from the straight rope stretched by the static tension profile

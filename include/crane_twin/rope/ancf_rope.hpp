@@ -9,20 +9,21 @@
 //   F_g = M g_field
 // (constant: gravity is a uniform field), Q = dU/dq summed over elements.
 //
-// With a rigging (setRigging, docs/model.md "Hook block"): one more element of the rigging's own
-// length and material, hinged at the hook: it shares the hook node's position r_n but has its own
-// top slope s_h, so q = [r_0, r_0x, ..., r_n, r_nx, s_h, r_p, r_px] (6 (n + 1) + 9), the rigging
-// element's coordinates [r_n, s_h, r_p, r_px]. The hook block is a point mass m_hook at r_n, the
-// payload m_end at r_p (the chain's last node, still the last 6 coordinates). Hoisting
+// With a rigging (setRigging, docs/model.md "Hook block"): the payload point r_p hangs from the
+// hook node r_n on a straight tension-only bar (PendulumRope's, hinged at both ends):
+// q = [r_0, r_0x, ..., r_n, r_nx, r_p] (6 (n + 1) + 3). The hook block is a point mass m_hook
+// at r_n; the bar's consistent mass and the payload m_end act on [r_n; r_p]. Hoisting
 // (setLength) rescales the hoist rope's elements only.
 #pragma once
 
 #include <Eigen/Sparse>
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "crane_twin/elements/ancf_cable_element.hpp"
 #include "crane_twin/elements/sparse_assembly.hpp"
+#include "crane_twin/rope/pendulum_rope.hpp"
 
 namespace crane_twin {
 
@@ -33,37 +34,32 @@ class AncfRope {
            double bending_stiffness, double end_mass, const Eigen::Vector3d& gravity,
            double top_mass = 0.0);
 
-  /// Elements of the chain: the hoist rope's and, with a rigging, the rigging's one.
-  int elements() const { return elements_ + (hasRigging() ? 1 : 0); }
-  int hoistElements() const { return elements_; }
+  /// Elements of the hoist rope (the rigging is a bar, not an element).
+  int elements() const { return elements_; }
   /// Nodes with a position: the hoist rope's n + 1 and, with a rigging, the payload's.
-  int nodes() const { return elements() + 1; }
-  int dofs() const { return 6 * (elements_ + 1) + (hasRigging() ? 9 : 0); }
-  /// Index of node j's position in q (6 j, the payload's after the rigging's top slope).
-  int positionIndex(int j) const { return j <= elements_ ? 6 * j : dofs() - 6; }
+  int nodes() const { return elements_ + (hasRigging() ? 2 : 1); }
+  int dofs() const { return 6 * (elements_ + 1) + (hasRigging() ? 3 : 0); }
+  /// Index of node j's position in q (6 j; the payload's, the last 3, with a rigging).
+  int positionIndex(int j) const { return j <= elements_ ? 6 * j : dofs() - 3; }
   Eigen::Vector3d position(const Eigen::VectorXd& q, int j) const {
     return q.segment<3>(positionIndex(j));
   }
-  /// Indices in q of element k's 12 coordinates [r_a, r_a,x, r_b, r_b,x].
-  std::array<int, 12> elementDofs(int k) const;
-  Vector12 elementCoordinates(const Eigen::VectorXd& q, int k) const;
+  /// Indices in q of the rigging bar's coordinates [r_n; r_p] (with a rigging).
+  std::array<int, 6> riggingDofs() const;
+  /// The rigging bar (hook to payload; its end mass the payload's). Only with a rigging.
+  const PendulumRope& rigging() const { return *rigging_; }
   /// The hoist rope's unstretched (hanging) length [m], without the rigging.
   double length() const { return element_.length * elements_; }
-  /// Element k's material and length (the hoist rope's, or the rigging's for the last one).
-  const AncfCableProperties& element(int k) const {
-    return k < elements_ ? element_ : rigging_;
-  }
   /// The payload on a rigging of unstretched length `length` [m] > 0 under the hook block of mass
-  /// `hook_mass` [kg] > 0 (docs/model.md "Hook block"): the rigging is one tension-only element of
-  /// mass_per_length [kg/m], axial_stiffness EA [N] and bending_stiffness EI [N m^2] (> 0: the
-  /// payload end's slope needs it). Rebuilds M and F_g. Throws std::invalid_argument otherwise.
-  void setRigging(double length, double hook_mass, double mass_per_length, double axial_stiffness,
-                  double bending_stiffness);
-  bool hasRigging() const { return rigging_.length > 0.0; }
+  /// `hook_mass` [kg] > 0 (docs/model.md "Hook block"): a tension-only bar of mass_per_length
+  /// [kg/m] >= 0 and axial_stiffness EA [N] > 0. Rebuilds M and F_g. Throws
+  /// std::invalid_argument otherwise.
+  void setRigging(double length, double hook_mass, double mass_per_length, double axial_stiffness);
+  bool hasRigging() const { return rigging_.has_value(); }
   double hookMass() const { return hook_mass_; }
   /// The hook block's node: the hoist rope's last (the chain's end without a rigging).
   int hookNode() const { return elements_; }
-  /// Points of the chain (sampleRopeCurve with each element's own length).
+  /// Points of the chain (sampleRopeCurve, then the rigging bar's straight line).
   std::vector<Eigen::Vector3d> sampleCurve(const Eigen::VectorXd& q, int per_element) const;
   double endMass() const { return end_mass_; }
   double topMass() const { return top_mass_; }
@@ -130,7 +126,7 @@ class AncfRope {
   AncfCableProperties element_;
   double end_mass_, top_mass_;
   double rope_axial_stiffness_, reeving_length_ = 0.0;
-  AncfCableProperties rigging_{0.0, 0.0, 1.0, 0.0, 5, true};  ///< length 0: no rigging
+  std::optional<PendulumRope> rigging_;  ///< hook to payload; empty: no rigging
   double hook_mass_ = 0.0;
   Eigen::Vector3d gravity_;
   SparseMatrix M_;

@@ -117,6 +117,7 @@ class FullOrderSolver {
   std::vector<int> mass_index_;   ///< value slot of each mass entry (in M's order)
   std::vector<double> mass_value_;
   std::vector<int> element_index_;  ///< 144 value slots per element, column-major 12 x 12
+  std::vector<int> rigging_index_;  ///< 36 value slots of the rigging bar, column-major 6 x 6
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt_;
 };
 
