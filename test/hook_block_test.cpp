@@ -178,10 +178,12 @@ TEST(HookBlock, TwinSwayCorrectionTurnsTheWholeChainRigidly) {
     EXPECT_LT((moved - (dp - dp.dot(n) * n)).norm(), dp.squaredNorm() / rho.norm() + 1e-9);
     EXPECT_NEAR((f.q.segment<3>(hook) - f.q.segment<3>(end)).norm(),
                 (before.q.segment<3>(hook) - before.q.segment<3>(end)).norm(), 1e-9);
-    for (std::size_t b = 0; b < blocks.size(); ++b)
-      if (blocks[b])
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      if (blocks[b]) {
         EXPECT_NEAR((f.q.segment<3>(3 * b) - top).norm(),
                     (before.q.segment<3>(3 * b) - top).norm(), 1e-9);
+      }
+    }
     if (std::string(model) == "full") {
       const AncfRope &rope = dynamic_cast<const CraneSimulation &>(*sim).rope();
       EXPECT_NEAR(rope.elasticEnergy(f.q), rope.elasticEnergy(before.q),
