@@ -62,8 +62,8 @@ int runInfo(const SceneArgs& a) {
   std::printf("integrated_structure_coordinates,%d\n", structureCoords);
   const bool pendulum = sc.rope.model == "pendulum";
   std::printf("integrated_rope_coordinates,%d\n",
-              pendulum ? ct::PendulumRope::kDofs
-                       : sc.rope.model != "reduced"          ? m.ropeDofs()
+              pendulum ? ct::PendulumRope::kDofs + (sc.hasRigging() ? 3 : 0)
+                       : sc.rope.model != "reduced" || sc.hasRigging() ? m.ropeDofs()
                        : sc.rope.reduction == "subdomains" ? ct::keptRopeModes(m) + 3
                                                            : ct::invariantRopeCoordinates(m));
   // The pendulum is a straight bar: it has no bending whatever rope.bending says.

@@ -69,7 +69,7 @@ void AncfRope::rescaleHoistSlopes(Eigen::VectorXd& x, double from, double to) co
 
 void AncfRope::assembleMass() {
   // Two parts on one pattern: the hoist rope's elements, whose entries scale with the element
-  // length under hoisting (setLength), and what does not (point masses, the rigging's element).
+  // length under hoisting (setLength), and what does not (point masses, the rigging bar).
   SparseAssembler hoist(dofs()), fixed(dofs());
   std::vector<int> eq(12);
   const Matrix12 Me = ancfMassMatrix(element_);

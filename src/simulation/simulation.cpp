@@ -77,8 +77,8 @@ void Simulation::writeNodeRows(std::ostream& out) const {
 }
 
 std::vector<bool> Simulation::fullStatePositionBlocks() const {
-  std::vector<bool> b;
-  for (int k = 0; 3 * k < fullState().q.size(); ++k) b.push_back(k % 2 == 0);
+  std::vector<bool> b(2 * static_cast<std::size_t>(ropeNodes()));
+  for (std::size_t k = 0; k < b.size(); k += 2) b[k] = true;
   return b;
 }
 

@@ -56,7 +56,6 @@ class AncfRope {
   /// std::invalid_argument otherwise.
   void setRigging(double length, double hook_mass, double mass_per_length, double axial_stiffness);
   bool hasRigging() const { return rigging_.has_value(); }
-  double hookMass() const { return hook_mass_; }
   /// The hook block's node: the hoist rope's last (the chain's end without a rigging).
   int hookNode() const { return elements_; }
   /// Points of the chain (sampleRopeCurve, then the rigging bar's straight line).
@@ -92,8 +91,8 @@ class AncfRope {
   /// Rescale a coordinate-like vector (q, v, q'') so the rope's geometry is unchanged under a
   /// length change from `from` to `to`: positions stay, slopes r_x scale by from / to.
   static void rescaleSlopes(Eigen::VectorXd& x, double from, double to);
-  /// rescaleSlopes on the hoist rope's nodes only (the junction included): a rigging's length
-  /// does not change, so the payload node's slope stays.
+  /// rescaleSlopes on the hoist rope's nodes only (a rigging's payload point, after them, has no
+  /// slope).
   void rescaleHoistSlopes(Eigen::VectorXd& x, double from, double to) const;
 
   /// Elastic force Q(q); appends the tangent K(q) as triplets when `tangent` is not null.

@@ -41,8 +41,9 @@ struct CraneModel {
   /// the static hanging load [N] (tension positive); structure->K then holds K + K_G.
   Eigen::VectorXd structure_axial_forces;
 
-  /// Rope DOF count of the ANCF discretisation: 6 per node.
-  int ropeDofs() const { return 6 * (scene.rope.elements + 1); }
+  /// Rope DOF count of the ANCF discretisation: 6 per node, and the payload point's 3 with a
+  /// rigging (AncfRope).
+  int ropeDofs() const { return 6 * (scene.rope.elements + 1) + (scene.hasRigging() ? 3 : 0); }
   /// Total rope mass of the hanging length [kg].
   double ropeMass() const { return rope.mass_per_length * scene.rope.length; }
   /// Mass that moves with the trolley point [kg] (0 without a crane): the trolley, and the

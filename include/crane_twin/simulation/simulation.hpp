@@ -80,8 +80,8 @@ class Simulation {
   /// the reduced model expands its own: O(n r)) and the support's coordinates z.
   virtual CoupledState fullState() const = 0;
   /// fullState().q read as 3-vectors: true where a block is a point, false for a slope. Default
-  /// ANCF's 6 per node (point, slope); the pendulum's are all points; a rigging adds its top
-  /// slope (AncfRope).
+  /// ANCF's 6 per node (point, slope) on ropeNodes(); the pendulum's are all points; a rigging
+  /// adds the payload's point after the hoist rope's nodes (AncfRope).
   virtual std::vector<bool> fullStatePositionBlocks() const;
   /// The drives' state (slewing angle, trolley radius, hoist length, speeds, flags).
   virtual const CraneDrives& drives() const = 0;
