@@ -226,6 +226,26 @@ void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12&
   }
 }
 
+double ancfSlackSwitchWorkError(const AncfCableProperties& p, const Vector12& e0,
+                                const Vector12& e1) {
+  if (!p.tension_only) return 0.0;
+  const GaussRule& gr = gaussRule(p.gauss_points);
+  const double EA = p.axial_stiffness, l = p.length;
+  double err = 0.0;
+  for (int q = 0; q < gr.x.size(); ++q) {
+    const Eigen::Vector4d sx = ancfShapeDx(gr.x(q), l);
+    const double eps0 = combine(sx, e0).norm() - 1.0, eps1 = combine(sx, e1).norm() - 1.0;
+    if (eps0 >= kSlackBand && eps1 >= kSlackBand) continue;  // linear law: trapezoid exact
+    double N0, N1, dN;
+    ancfAxialLaw(EA, eps0, true, N0, dN);
+    ancfAxialLaw(EA, eps1, true, N1, dN);
+    const double trapezoid = 0.5 * (N0 + N1) * (eps1 - eps0);
+    const double exact = ancfAxialEnergy(EA, eps1, true) - ancfAxialEnergy(EA, eps0, true);
+    err += gr.w(q) * l * std::abs(trapezoid - exact);
+  }
+  return err;
+}
+
 void ancfAxialDampingForce(const AncfCableProperties& p, double c, const Vector12& e,
                            const Vector12& edot, Vector12& Q, Matrix12* C) {
   const GaussRule& gr = gaussRule(p.gauss_points);

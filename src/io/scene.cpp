@@ -103,10 +103,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     r.subdomain_residual = n.number("subdomain_residual", 0.0, Bounds::nonNegative());
     r.subdomain_frame = n.string("subdomain_frame", "fixed", {"fixed", "corotational"});
     r.subdomain_rotation = n.number("subdomain_rotation", 0.1, Bounds::closed(1e-4, 1.0));
-    // Default: on for the pendulum rope, off for the ANCF ropes for now (undamped, an ANCF
-    // tension-only rope's slack-taut transitions gain energy under the integrator,
-    // docs/model.md "Tension-only rope").
-    r.tension_only = n.boolean("tension_only", r.model == "pendulum");
+    r.tension_only = n.boolean("tension_only", true);
     r.damping = n.number("damping", 0.0, Bounds::nonNegative());
     r.mass_per_length = n.number("mass_per_length", def.mass_per_length, Bounds::positive());
     r.axial_stiffness = n.number("axial_stiffness", def.axial_stiffness, Bounds::positive());

@@ -181,6 +181,15 @@ double AncfRope::elasticEnergy(const Eigen::VectorXd& q) const {
   return U;
 }
 
+double AncfRope::slackSwitchWorkError(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) const {
+  if (!element_.tension_only) return 0.0;
+  double err = 0.0;
+  for (int k = 0; k < elements_; ++k) {
+    err += ancfSlackSwitchWorkError(element_, q0.segment<12>(6 * k), q1.segment<12>(6 * k));
+  }
+  return err;
+}
+
 Eigen::VectorXd AncfRope::stretchedStraight(const Eigen::Vector3d& top, const Eigen::Vector3d& d,
                                             double end_force, double force_per_length) const {
   const double l = element_.length, L = length(), EA = element_.axial_stiffness;
@@ -209,10 +218,13 @@ Eigen::VectorXd AncfRope::stretchedStraight(const Eigen::Vector3d& top, const Ei
 }
 
 Eigen::VectorXd AncfRope::straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d) const {
+  // Zero axial force: eps = 0, or the tension-only law's slack edge eps = -kSlackBand (at eps = 0
+  // its smoothed band still carries EA kSlackBand / 4, ancfAxialLaw).
+  const double g = element_.tension_only ? 1.0 - kSlackBand : 1.0;
   Eigen::VectorXd q(dofs());
   for (int j = 0; j <= elements_; ++j) {
-    q.segment<3>(6 * j) = top + element_.length * j * d;
-    q.segment<3>(6 * j + 3) = d;
+    q.segment<3>(6 * j) = top + g * element_.length * j * d;
+    q.segment<3>(6 * j + 3) = g * d;
   }
   if (hasRigging()) q.tail<3>() = top + (length() + rigging_->length()) * d;
   return q;

@@ -234,6 +234,10 @@ void FullOrderSolver::initializeAccelerations(CoupledState& s) {
 
 // One step of size h_, halved where Newton fails (stepWithHalving).
 void FullOrderSolver::step(CoupledState& s) {
+  // A hoisting step rescales the slopes (uniform rescaling, docs/model.md): the strain moves by
+  // the length change over the length, which is no slack/taut switch of the dynamics.
+  hoisting_ = rope_.length() != last_step_length_;
+  last_step_length_ = rope_.length();
   stepWithHalving(s, h_, kMaxHalvings,
                   [this](CoupledState& x, double h, std::string& why) { return tryStep(x, h, why); },
                   halved_steps_);
@@ -262,7 +266,21 @@ bool FullOrderSolver::tryStep(CoupledState& s, double h, std::string& why) {
     dmu = dx.tail<3>();
     return true;
   };
-  return newtonStep(ga_, support_, newton_, h, increment, s, why);
+  if (!rope_.tensionOnly() || hoisting_) return newtonStep(ga_, support_, newton_, h, increment, s, why);
+  const CoupledState start = s;
+  if (!newtonStep(ga_, support_, newton_, h, increment, s, why)) return false;
+  // Step-size control at slack/taut switches (kSlackSwitchTolerance): the trapezoidal work of
+  // the tension-only axial law differs from its energy change only where a point switches.
+  // The scale: the hanging weight (standard gravity, so that g = 0 has one too) times the length.
+  const double weight =
+      9.80665 * (rope_.endMass() + rope_.element().mass_per_length * rope_.length());
+  const double tolerance = kSlackSwitchTolerance * weight * rope_.length();
+  const double err = rope_.slackSwitchWorkError(start.q, s.q);
+  if (err <= tolerance || h <= 1.5 * h_ / double(1 << kMaxHalvings)) return true;
+  why = "t = " + std::to_string(s.t) + " s: slack/taut switch work error " + std::to_string(err) +
+        " J over " + std::to_string(tolerance) + " J";
+  s = start;
+  return false;
 }
 
 double mechanicalEnergy(const AncfRope& rope, const RopeSupport& support, const CoupledState& s) {

@@ -58,6 +58,16 @@ inline bool ancfAxialSlack(double g, bool tension_only) {
   return tension_only && g - 1.0 <= -kSlackBand;
 }
 
+/// Work error of the trapezoidal rule on a tension-only element's axial law over one time step
+/// from e0 to e1 [J] (docs/model.md "Tension-only rope"):
+///   err = sum_g w_g l | (N(eps0) + N(eps1)) / 2 (eps1 - eps0) - (psi(eps1) - psi(eps0)) |,
+/// summed over the Gauss points where either end lies below the linear range (eps < kSlackBand).
+/// For the linear law the trapezoid is exact (psi is quadratic), so this measures the energy
+/// an implicit step creates or destroys where a point switches between slack and taut; the
+/// solvers halve such steps (step-size control). 0 without tension_only.
+double ancfSlackSwitchWorkError(const AncfCableProperties& p, const Vector12& e0,
+                                const Vector12& e1);
+
 /// Position r(xi) = S(xi) e.
 Eigen::Vector3d ancfPosition(const Vector12& e, double xi, double l);
 

@@ -39,7 +39,7 @@ struct RopeSettings {
   double axial_stiffness = 2.2e7; ///< EA per fall [N]
   double bending_stiffness = 78.5;///< EI per fall [N m^2]
   double breaking_force = 345e3;  ///< per fall [N]
-  bool tension_only = false;      ///< no axial force in compression (docs/scenes.md)
+  bool tension_only = true;       ///< no axial force in compression (docs/scenes.md)
   double safety_factor = 5.0;     ///< working load limit = breaking_force / safety_factor
   /// Single line in tension between the winch drum and the falls [m] (docs/model.md "Reeving").
   double reeving_length = 0.0;

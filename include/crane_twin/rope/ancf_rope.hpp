@@ -101,6 +101,10 @@ class AncfRope {
   /// Assembled tangent stiffness K(q) = dQ/dq (n x n); Q(q) into *force when given.
   SparseMatrix tangentStiffness(const Eigen::VectorXd& q, Eigen::VectorXd* force = nullptr) const;
   double elasticEnergy(const Eigen::VectorXd& q) const;
+  /// Sum of ancfSlackSwitchWorkError over the hoist rope's elements for a step q0 -> q1 [J]
+  /// (0 unless tension_only).
+  double slackSwitchWorkError(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) const;
+  bool tensionOnly() const { return element_.tension_only; }
 
   /// Node `node`'s position in a chain without a rigging (position() in general).
   static Eigen::Vector3d nodePosition(const Eigen::VectorXd& q, int node) {
@@ -112,6 +116,8 @@ class AncfRope {
   /// w_j = v_j - v_0 on every node position [J] (what a projection may drop).
   double kineticEnergyRelativeToTop(const Eigen::VectorXd& v) const;
   /// Straight, unstretched rope from `top` along unit direction d.
+  /// (With tension_only: shortened to the law's slack edge, strain -kSlackBand, so that it carries
+  /// no force.)
   Eigen::VectorXd straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d) const;
   /// Straight rope from `top` along d, stretched by the tension profile
   /// T(x) = end_force + force_per_length (L - x) [N] (strain T / EA; node slopes at the nodes'

@@ -70,7 +70,12 @@ class FullOrderSolver {
   /// kMaxHalvings times). Throws NumericalFailure naming the time and the reason; s is then
   /// left at the step's start.
   void step(CoupledState& s);
-  static constexpr int kMaxHalvings = 6;
+  static constexpr int kMaxHalvings = 10;
+  /// Step-size control of a tension-only rope (docs/model.md "Tension-only rope"): a step whose
+  /// slack/taut switching work error (AncfRope::slackSwitchWorkError) exceeds this fraction of
+  /// the hanging weight times the rope length is halved, down to h / 2^kMaxHalvings (a step
+  /// that small is taken whatever its error).
+  static constexpr double kSlackSwitchTolerance = 1e-10;
   /// Axial strain-rate damping of the rope, c [s] (ancfAxialDampingForce; 0: none). Throws
   /// std::invalid_argument for a negative or non-finite c.
   void setRopeDamping(double c);
@@ -107,6 +112,8 @@ class FullOrderSolver {
   // One step of size h from s; false (s unchanged, the reason in why) where Newton fails.
   bool tryStep(CoupledState& s, double h, std::string& why);
   long halved_steps_ = 0;
+  double last_step_length_ = -1.0;  ///< the rope's length at the previous step()
+  bool hoisting_ = false;           ///< the length changed since: no switch control this step
   double rope_damping_ = 0.0;
   const AncfRope& rope_;
   RopeSupport& support_;
