@@ -185,7 +185,9 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
     std::fprintf(stderr, "warning: %s in %ld output rows\n", ct::warningName(bit), rows);
   }
   if (sim->halvedSteps() > 0) {
-    std::fprintf(stderr, "note: halved_steps=%ld (steps where Newton failed or a slack/taut switch was too coarse at the full size)\n",
+    std::fprintf(stderr,
+                 "note: halved_steps=%ld (steps where Newton failed or a slack/taut switch was "
+                 "too coarse at the full size)\n",
                  sim->halvedSteps());
   }
   const double simS = steps * sc.time_step;

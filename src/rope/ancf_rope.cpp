@@ -226,7 +226,7 @@ Eigen::VectorXd AncfRope::straight(const Eigen::Vector3d& top, const Eigen::Vect
     q.segment<3>(6 * j) = top + g * element_.length * j * d;
     q.segment<3>(6 * j + 3) = g * d;
   }
-  if (hasRigging()) q.tail<3>() = top + (length() + rigging_->length()) * d;
+  if (hasRigging()) q.tail<3>() = top + (g * length() + rigging_->length()) * d;
   return q;
 }
 

@@ -230,6 +230,7 @@ void FullOrderSolver::initializeAccelerations(CoupledState& s) {
   factorize("initial accelerations");
   const Eigen::VectorXd x = ldlt_.solve(rhs);
   storeConsistentAccelerations(support_, x.head(n), x.tail<3>(), Azr, s);
+  last_step_length_ = rope_.length();  // a start, not a hoist: the first step is controlled
 }
 
 // One step of size h_, halved where Newton fails (stepWithHalving).
@@ -266,7 +267,9 @@ bool FullOrderSolver::tryStep(CoupledState& s, double h, std::string& why) {
     dmu = dx.tail<3>();
     return true;
   };
-  if (!rope_.tensionOnly() || hoisting_) return newtonStep(ga_, support_, newton_, h, increment, s, why);
+  if (!rope_.tensionOnly() || hoisting_) {
+    return newtonStep(ga_, support_, newton_, h, increment, s, why);
+  }
   const CoupledState start = s;
   if (!newtonStep(ga_, support_, newton_, h, increment, s, why)) return false;
   // Step-size control at slack/taut switches (kSlackSwitchTolerance): the trapezoidal work of

@@ -112,7 +112,7 @@ class FullOrderSolver {
   // One step of size h from s; false (s unchanged, the reason in why) where Newton fails.
   bool tryStep(CoupledState& s, double h, std::string& why);
   long halved_steps_ = 0;
-  double last_step_length_ = -1.0;  ///< the rope's length at the previous step()
+  double last_step_length_ = -1.0;  ///< the rope's length at the previous step() or start
   bool hoisting_ = false;           ///< the length changed since: no switch control this step
   double rope_damping_ = 0.0;
   const AncfRope& rope_;
