@@ -4,7 +4,7 @@
 # table of docs/stability.md. About 10 minutes on the 2-core machine. Needs a build.
 set -uo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-SIM="$ROOT/build/ws/devel/lib/crane_twin/crane_sim"
+SIM="${SIM:-$ROOT/build/ws/devel/lib/crane_twin/crane_sim}"  # SIM=... to run another build
 OUT="$ROOT/build/hard_cases"
 S="$ROOT/config/scenes"
 mkdir -p "$OUT"

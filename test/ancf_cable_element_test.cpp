@@ -371,7 +371,11 @@ TEST(AncfTensionOnly, AxialLawIsContinuousWithAContinuousSlope) {
     EXPECT_NEAR((ancfAxialEnergy(EA, eps + h, true) - ancfAxialEnergy(EA, eps - h, true)) / (2 * h),
                 N, 1e-6 * EA * std::max(std::abs(eps), d));
     EXPECT_GE(N, eps < -g ? -EA : 0.0);
-    if (eps > -g && eps <= -d) EXPECT_EQ(N, 0.0);
-    if (eps >= d) EXPECT_DOUBLE_EQ(N, EA * eps);
+    if (eps > -g && eps <= -d) {
+      EXPECT_EQ(N, 0.0);
+    }
+    if (eps >= d) {
+      EXPECT_DOUBLE_EQ(N, EA * eps);
+    }
   }
 }

@@ -99,7 +99,7 @@ TEST(InvariantBasis, CarriesStraightRopesAndRigidRotationsExactly) {
   r.sim.initialize();
   const InvariantReducedSolver& s = r.sim.solver();
   // A straight unstretched rope in any direction from any top point: in the span (psi_0, xi).
-  for (const Eigen::Vector3d d : {Eigen::Vector3d(0, 0, -1), Eigen::Vector3d(1, 2, -0.5).normalized(),
+  for (const Eigen::Vector3d& d : {Eigen::Vector3d(0, 0, -1), Eigen::Vector3d(1, 2, -0.5).normalized(),
                                   Eigen::Vector3d(0, 1, 0)}) {
     EXPECT_LT(s.projectionError(r.rope().straight(Eigen::Vector3d(3, -2, 7), d)), 1e-10);
   }

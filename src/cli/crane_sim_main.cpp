@@ -186,8 +186,7 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   }
   if (sim->halvedSteps() > 0) {
     std::fprintf(stderr,
-                 "note: halved_steps=%ld (steps where Newton failed or a slack/taut switch was "
-                 "too coarse at the full size)\n",
+                 "note: halved_steps=%ld (steps where Newton failed at the full size)\n",
                  sim->halvedSteps());
   }
   const double simS = steps * sc.time_step;
@@ -199,10 +198,12 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
     rows_per_bit += (rows_per_bit.empty() ? "" : ",") + std::to_string(bit) + ":" + std::to_string(rows);
   }
   std::printf("summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=%d mode_updates_s=%.3g "
-              "hand_overs=%ld full_order_steps=%ld warnings_seen=%d warning_rows=%s\n",
+              "hand_overs=%ld full_order_steps=%ld warnings_seen=%d warning_rows=%s "
+              "energy_consistent_steps=%ld halved_steps=%ld\n",
               wall, simS, simS / wall, steps, sim->subdomains(), sim->modeUpdateSeconds(),
               sim->handOvers(), sim->fullOrderSteps(), seen,
-              rows_per_bit.empty() ? "none" : rows_per_bit.c_str());
+              rows_per_bit.empty() ? "none" : rows_per_bit.c_str(), sim->energyConsistentSteps(),
+              sim->halvedSteps());
   return 0;
 }
 

@@ -1,5 +1,6 @@
 #include "crane_twin/elements/ancf_cable_element.hpp"
 
+#include "crane_twin/elements/discrete_gradient.hpp"
 #include "crane_twin/elements/gauss_legendre.hpp"
 
 #include <algorithm>
@@ -63,6 +64,33 @@ void addOuter(const Eigen::Vector4d& sa, const Eigen::Vector4d& sb, const Eigen:
 // Q += w * Sa^T v
 void addVec(const Eigen::Vector4d& sa, const Eigen::Vector3d& v, double w, Vector12& Q) {
   for (int i = 0; i < 4; ++i) Q.segment<3>(3 * i) += (w * sa(i)) * v;
+}
+
+// One Gauss point's share of the element force and tangent, from the point's derivatives d
+// with weight w: Q += w (S_x^T fa + S_xx^T fb); block (i, j) of K gains
+// w (sx_i sx_j Paa + sx_i sxx_j Pab + sxx_i sx_j Pab^T + sxx_i sxx_j Pbb), for j >= i only
+// when bending (mirrorUpper completes it; the profiled hot spot was one 3 x 3 update per term
+// and pair).
+void addPoint(const Eigen::Vector4d& sx, const Eigen::Vector4d& sxx,
+              const CablePointDerivatives& d, double w, bool bending, Vector12& Q, Matrix12* K) {
+  addVec(sx, d.fa, w, Q);
+  if (!bending) {
+    if (K) addOuter(sx, sx, d.Paa, w, *K);
+    return;
+  }
+  addVec(sxx, d.fb, w, Q);
+  if (!K) return;
+  for (int i = 0; i < 4; ++i)
+    for (int j = i; j < 4; ++j)
+      K->block<3, 3>(3 * i, 3 * j) +=
+          w * ((sx(i) * sx(j)) * d.Paa + (sx(i) * sxx(j)) * d.Pab +
+               (sxx(i) * sx(j)) * d.Pab.transpose() + (sxx(i) * sxx(j)) * d.Pbb);
+}
+
+// The lower block triangle of K from the upper one.
+void mirrorUpper(Matrix12& K) {
+  for (int i = 1; i < 4; ++i)
+    for (int j = 0; j < i; ++j) K.block<3, 3>(3 * i, 3 * j) = K.block<3, 3>(3 * j, 3 * i).transpose();
 }
 
 }  // namespace
@@ -203,27 +231,66 @@ void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12&
     const double w = wg(q) * l;
     const Eigen::Vector4d sx = ancfShapeDx(xg(q), l);
     const Eigen::Vector4d sxx = ancfShapeDxx(xg(q), l);
-    // Q = int (S_x^T phi_a + S_xx^T phi_b) dx; block (i, j) of the tangent gains
-    // w (sx_i sx_j Paa + sx_i sxx_j Pab + sxx_i sx_j Pab^T + sxx_i sxx_j Pbb), computed for
-    // j >= i only and mirrored (the profiled hot spot was one 3 x 3 update per term and pair).
+    // Q = int (S_x^T phi_a + S_xx^T phi_b) dx (addPoint).
     ancfCablePoint(EA, EI, combine(sx, e), combine(sxx, e), K != nullptr, d, p.tension_only);
-    addVec(sx, d.fa, w, Q);
-    if (EI == 0.0) {
-      if (K) addOuter(sx, sx, d.Paa, w, *K);
-      continue;
+    addPoint(sx, sxx, d, w, EI != 0.0, Q, K);
+  }
+  if (K && EI != 0.0) mirrorUpper(*K);
+}
+
+void ancfElasticForceDiscreteGradient(const AncfCableProperties& p, const Vector12& e0,
+                                      const Vector12& e1, Vector12& Q, Matrix12* K) {
+  const GaussRule& gr = gaussRule(p.gauss_points);
+  Q.setZero();
+  if (K) K->setZero();
+  const double EA = p.axial_stiffness, EI = p.bending_stiffness, l = p.length;
+  const bool to = p.tension_only;
+  // The axial energy as a function of s = |a|^2: W(s) = psi(g - 1), W' = N / (2 g),
+  // W'' = (N' g - N) / (4 g^3), g = sqrt(s).
+  const auto W = [&](double s) { return ancfAxialEnergy(EA, std::sqrt(s) - 1.0, to); };
+  const auto dW = [&](double s) {
+    const double g = std::sqrt(s);
+    double N, dN;
+    ancfAxialLaw(EA, g - 1.0, to, N, dN);
+    return N / (2.0 * g);
+  };
+  const auto ddW = [&](double s) {
+    const double g = std::sqrt(s);
+    double N, dN;
+    ancfAxialLaw(EA, g - 1.0, to, N, dN);
+    return (dN * g - N) / (4.0 * g * g * g);
+  };
+  CablePointDerivatives d;
+  for (int q = 0; q < gr.x.size(); ++q) {
+    const double w = gr.w(q) * l;
+    const Eigen::Vector4d sx = ancfShapeDx(gr.x(q), l);
+    const Eigen::Vector4d sxx = ancfShapeDxx(gr.x(q), l);
+    const Eigen::Vector3d a0 = combine(sx, e0), a1 = combine(sx, e1), am = 0.5 * (a0 + a1);
+    const Eigen::Vector3d b0 = combine(sxx, e0), b1 = combine(sxx, e1), bm = 0.5 * (b0 + b1);
+    // Bending: Gonzalez's midpoint gradient with its correction along dy = (da, l db).
+    d = CablePointDerivatives();
+    if (EI != 0.0) {
+      ancfCablePoint(0.0, EI, am, bm, K != nullptr, d, false);
+      const Eigen::Vector3d da = a1 - a0, db = b1 - b0;
+      const double dy2 = da.squaredNorm() + l * l * db.squaredNorm();
+      if (dy2 > 1e-16) {
+        const double c = (ancfCableEnergyDensity(0.0, EI, a1, b1) -
+                          ancfCableEnergyDensity(0.0, EI, a0, b0) - d.fa.dot(da) - d.fb.dot(db)) /
+                         dy2;
+        d.fa += c * da;
+        d.fb += (c * l * l) * db;
+      }
     }
-    addVec(sxx, d.fb, w, Q);
-    if (!K) continue;
-    for (int i = 0; i < 4; ++i)
-      for (int j = i; j < 4; ++j)
-        K->block<3, 3>(3 * i, 3 * j) +=
-            w * ((sx(i) * sx(j)) * d.Paa + (sx(i) * sxx(j)) * d.Pab +
-                 (sxx(i) * sx(j)) * d.Pab.transpose() + (sxx(i) * sxx(j)) * d.Pbb);
+    // Axial: the secant in s = |a|^2.
+    const SquaredLengthSecant sec = squaredLengthSecant(a0.squaredNorm(), a1.squaredNorm(), W, dW, ddW);
+    d.fa += (2.0 * sec.slope) * am;
+    if (K) {
+      d.Paa += (2.0 * sec.slope) * Eigen::Matrix3d::Identity() +
+               (8.0 * sec.curvature) * am * am.transpose();
+    }
+    addPoint(sx, sxx, d, w, EI != 0.0, Q, K);
   }
-  if (K && EI != 0.0) {
-    for (int i = 1; i < 4; ++i)
-      for (int j = 0; j < i; ++j) K->block<3, 3>(3 * i, 3 * j) = K->block<3, 3>(3 * j, 3 * i).transpose();
-  }
+  if (K && EI != 0.0) mirrorUpper(*K);
 }
 
 double ancfSlackSwitchWorkError(const AncfCableProperties& p, const Vector12& e0,

@@ -52,7 +52,8 @@ double constraintError(const RopeSupport& support, const CoupledState& s) {
 }
 
 bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSettings& newton,
-                double h, const RopeIncrement& increment, CoupledState& s, std::string& why) {
+                double h, const RopeIncrement& increment, CoupledState& s, std::string& why,
+                const Eigen::VectorXd* support_start_residual) {
   const int m = support.size();
   NewtonWeights w;
   w.mass = ga.massWeight();
@@ -71,6 +72,7 @@ bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSe
     if (m > 0) {
       rz = -bh2 * (support.internalForce(s.z, s.zd, s.zdd) -
                    support.pointForceToCoordinates(s.lambda));
+      if (support_start_residual) rz -= bh2 * *support_start_residual;
     }
     const Eigen::Vector3d rc =
         condenseSupport(support, -(s.q.head<3>() - support.point(s.z)), rz, Azr);

@@ -1,5 +1,7 @@
 #include "crane_twin/rope/pendulum_rope.hpp"
 
+#include "crane_twin/elements/discrete_gradient.hpp"
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -79,6 +81,35 @@ void PendulumRope::elasticForce(const Vector6& q, Vector6& Q, Matrix6* K) const 
   if (!K) return;
   const Eigen::Matrix3d uu = u * u.transpose();
   const Eigen::Matrix3d Kb = EA_ / L_ * uu + T / l * (Eigen::Matrix3d::Identity() - uu);
+  K->topLeftCorner<3, 3>() = Kb;
+  K->bottomRightCorner<3, 3>() = Kb;
+  K->topRightCorner<3, 3>() = -Kb;
+  K->bottomLeftCorner<3, 3>() = -Kb;
+}
+
+void PendulumRope::discreteGradientForce(const Vector6& q0, const Vector6& q1, Vector6& Q,
+                                         Matrix6* K) const {
+  // W(s) = U(l), l = sqrt(s): W' = T / (2 l), W'' = (T' l - T) / (4 l^3), T' = EA / L taut.
+  const auto W = [&](double s) {
+    const double l = std::sqrt(s);
+    return slack(l) ? 0.0 : 0.5 * EA_ / L_ * (l - L_) * (l - L_);
+  };
+  const auto dW = [&](double s) {
+    const double l = std::sqrt(s);
+    return slack(l) ? 0.0 : EA_ * (l - L_) / L_ / (2.0 * l);
+  };
+  const auto ddW = [&](double s) {
+    const double l = std::sqrt(s);
+    return slack(l) ? 0.0 : (EA_ / L_ * l - EA_ * (l - L_) / L_) / (4.0 * l * l * l);
+  };
+  const Eigen::Vector3d d0 = q0.tail<3>() - q0.head<3>(), d1 = q1.tail<3>() - q1.head<3>();
+  const Eigen::Vector3d dm = 0.5 * (d0 + d1);
+  const SquaredLengthSecant sec = squaredLengthSecant(d0.squaredNorm(), d1.squaredNorm(), W, dW, ddW);
+  Q.head<3>() = -2.0 * sec.slope * dm;
+  Q.tail<3>() = 2.0 * sec.slope * dm;
+  if (!K) return;
+  const Eigen::Matrix3d Kb = 2.0 * sec.slope * Eigen::Matrix3d::Identity() +
+                             8.0 * sec.curvature * dm * dm.transpose();
   K->topLeftCorner<3, 3>() = Kb;
   K->bottomRightCorner<3, 3>() = Kb;
   K->topRightCorner<3, 3>() = -Kb;

@@ -88,6 +88,7 @@ void CraneSimulation::continueFrom(const Simulation& other) {
   // The generalized-alpha variables belong to a time step: with another step, restart.
   if (o->solver_->timeStep() == solver_->timeStep()) {
     state_ = o->state_;
+    solver_->continueSteppingOf(*o->solver_);
   } else {
     restartFrom(o->state_);
   }

@@ -58,6 +58,12 @@ FullOrderSolver::FullOrderSolver(const AncfRope& rope, RopeSupport& support,
   ldlt_.analyzePattern(A_);
 }
 
+void FullOrderSolver::continueSteppingOf(const FullOrderSolver& o) {
+  switching_ = o.switching_;
+  energy_created_ = o.energy_created_;
+  last_step_length_ = o.last_step_length_;
+}
+
 void FullOrderSolver::refreshMass() {
   const SparseMatrix& M = rope_.massMatrix();
   std::size_t i = 0;
@@ -74,7 +80,18 @@ void FullOrderSolver::setRopeDamping(double c) {
 
 void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                double massWeight, double stiffWeight, double dampWeight,
-                               const Eigen::Matrix3d& G, Eigen::VectorXd& Q) {
+                               const Eigen::Matrix3d& G, Eigen::VectorXd& Q,
+                               const CoupledState* from) {
+  // An energy-consistent step: the damper acts at the step's midpoint (q_m, v_m), where its
+  // work v_m . Q_d h = h int c EA eps'^2 dx >= 0 is a dissipation; d/dv of twice that force is
+  // C_d(q_m) (v_m = (v0 + v) / 2).
+  Eigen::VectorXd qm, vm;
+  if (from) {
+    qm = 0.5 * (from->q + q);
+    vm = 0.5 * (from->v + v);
+  }
+  const Eigen::VectorXd& qd = from ? qm : q;
+  const Eigen::VectorXd& vd = from ? vm : v;
   double* val = A_.valuePtr();
   const int n = rope_.dofs();
   std::fill(val, val + A_.nonZeros(), 0.0);
@@ -84,15 +101,20 @@ void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& 
   Matrix12 Ke;
   const int* idx = element_index_.data();
   for (int k = 0; k < rope_.elements(); ++k, idx += 144) {
-    ancfElasticForce(rope_.element(), q.segment<12>(6 * k), Qe, stiffWeight != 0.0 ? &Ke : nullptr);
+    if (from) {
+      ancfElasticForceDiscreteGradient(rope_.element(), from->q.segment<12>(6 * k),
+                                       q.segment<12>(6 * k), Qe, stiffWeight != 0.0 ? &Ke : nullptr);
+    } else {
+      ancfElasticForce(rope_.element(), q.segment<12>(6 * k), Qe, stiffWeight != 0.0 ? &Ke : nullptr);
+    }
     Q.segment<12>(6 * k) += Qe;
     if (stiffWeight != 0.0) {
       const double* ke = Ke.data();
       for (int e = 0; e < 144; ++e) val[idx[e]] += stiffWeight * ke[e];
     }
     if (rope_damping_ == 0.0) continue;
-    ancfAxialDampingForce(rope_.element(), rope_damping_, q.segment<12>(6 * k),
-                          v.segment<12>(6 * k), Qe, dampWeight != 0.0 ? &Ke : nullptr);
+    ancfAxialDampingForce(rope_.element(), rope_damping_, qd.segment<12>(6 * k),
+                          vd.segment<12>(6 * k), Qe, dampWeight != 0.0 ? &Ke : nullptr);
     Q.segment<12>(6 * k) += Qe;
     if (dampWeight == 0.0) continue;
     const double* ce = Ke.data();
@@ -103,9 +125,16 @@ void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& 
     const std::array<int, 6> r = rope_.riggingDofs();
     Vector6 qb, vb, Qb;
     Matrix6 Kb, Cb;
-    for (int i = 0; i < 6; ++i) qb(i) = q(r[i]), vb(i) = v(r[i]);
-    rope_.rigging().elasticForce(qb, Qb, &Kb);
+    for (int i = 0; i < 6; ++i) qb(i) = q(r[i]);
+    if (from) {
+      Vector6 qb0;
+      for (int i = 0; i < 6; ++i) qb0(i) = from->q(r[i]);
+      rope_.rigging().discreteGradientForce(qb0, qb, Qb, &Kb);
+    } else {
+      rope_.rigging().elasticForce(qb, Qb, &Kb);
+    }
     for (int i = 0; i < 6; ++i) Q(r[i]) += Qb(i);
+    for (int i = 0; i < 6; ++i) qb(i) = qd(r[i]), vb(i) = vd(r[i]);
     rope_.rigging().dampingForce(rope_damping_, qb, vb, Qb, &Cb);
     for (int i = 0; i < 6; ++i) Q(r[i]) += Qb(i);
     const Matrix6 Ab = stiffWeight * Kb + dampWeight * Cb;
@@ -230,13 +259,12 @@ void FullOrderSolver::initializeAccelerations(CoupledState& s) {
   factorize("initial accelerations");
   const Eigen::VectorXd x = ldlt_.solve(rhs);
   storeConsistentAccelerations(support_, x.head(n), x.tail<3>(), Azr, s);
-  last_step_length_ = rope_.length();  // a start, not a hoist: the first step is controlled
+  last_step_length_ = rope_.length();  // a start, not a hoist
+  switching_ = false;                   // consistent accelerations: generalized-alpha's start
 }
 
 // One step of size h_, halved where Newton fails (stepWithHalving).
 void FullOrderSolver::step(CoupledState& s) {
-  // A hoisting step rescales the slopes (uniform rescaling, docs/model.md): the strain moves by
-  // the length change over the length, which is no slack/taut switch of the dynamics.
   hoisting_ = rope_.length() != last_step_length_;
   last_step_length_ = rope_.length();
   stepWithHalving(s, h_, kMaxHalvings,
@@ -244,7 +272,78 @@ void FullOrderSolver::step(CoupledState& s) {
                   halved_steps_);
 }
 
+double FullOrderSolver::switchTolerance() const {
+  // The scale: the hanging weight (standard gravity, so that g = 0 has one too) times the length.
+  const double weight =
+      9.80665 * (rope_.endMass() + rope_.element().mass_per_length * rope_.length());
+  return kSwitchTolerance * weight * rope_.length();
+}
+
+double FullOrderSolver::ropeEnergyCreated(const CoupledState& start, const CoupledState& s) const {
+  // The rope's own energy E_r = 1/2 v^T M v + U(q) - F^T q changes by the work of the top force,
+  // -lambda . dr_0 (trapezoid in time), less the damper's dissipation (at the midpoint).
+  const SparseMatrix& M = rope_.massMatrix();
+  const Eigen::VectorXd& F = rope_.gravityForce();
+  const auto ropeEnergy = [&](const CoupledState& x) {
+    return 0.5 * x.v.dot(M * x.v) + rope_.elasticEnergy(x.q) - F.dot(x.q);
+  };
+  const Eigen::VectorXd dq = s.q - start.q;
+  double created = ropeEnergy(s) - ropeEnergy(start) + 0.5 * (start.lambda + s.lambda).dot(dq.head<3>());
+  if (rope_damping_ > 0.0) {
+    const Eigen::VectorXd qm = 0.5 * (start.q + s.q), vm = 0.5 * (start.v + s.v);
+    Vector12 Qd;
+    for (int k = 0; k < rope_.elements(); ++k) {
+      ancfAxialDampingForce(rope_.element(), rope_damping_, qm.segment<12>(6 * k),
+                            vm.segment<12>(6 * k), Qd);
+      created += Qd.dot(dq.segment<12>(6 * k));
+    }
+    if (rope_.hasRigging()) {
+      const std::array<int, 6> r = rope_.riggingDofs();
+      Vector6 qb, vb, db, Qb;
+      for (int i = 0; i < 6; ++i) qb(i) = qm(r[i]), vb(i) = vm(r[i]), db(i) = dq(r[i]);
+      rope_.rigging().dampingForce(rope_damping_, qb, vb, Qb);
+      created += Qb.dot(db);
+    }
+  }
+  return created;
+}
+
+// A tension-only rope (see the header): generalized-alpha where the rope neither switches nor
+// gains energy, the energy-consistent step where it does (or where generalized-alpha's Newton
+// fails).
 bool FullOrderSolver::tryStep(CoupledState& s, double h, std::string& why) {
+  if (!rope_.tensionOnly()) return generalizedAlphaStep(s, h, why);
+  const CoupledState start = s;
+  const double tolerance = switchTolerance();
+  if (!switching_) {
+    if (generalizedAlphaStep(s, h, why)) {
+      // A rope taut at both ends of the step (no point below the axial law's linear range: a
+      // switch error of exactly 0) is generalized-alpha's as with the symmetric law.
+      const double switch_error = rope_.slackSwitchWorkError(start.q, s.q);
+      if (switch_error == 0.0) return true;
+      // A hoisting step is judged by its energy alone: uniform rescaling has moved every strain
+      // by dL / L before it (docs/model.md "Hoisting"), which reads as a switch wherever that
+      // shift crosses the slack band, but is no switch of the dynamics within the step.
+      if (hoisting_ || switch_error <= tolerance) {
+        const double created = ropeEnergyCreated(start, s);
+        if (energy_created_ + created <= tolerance) {
+          energy_created_ += created;
+          return true;
+        }
+      }
+    }
+    s = start;
+  }
+  if (!energyConsistentStep(s, h, why)) return false;
+  energy_created_ += ropeEnergyCreated(start, s);
+  ++energy_consistent_steps_;
+  switching_ = !hoisting_ && rope_.slackSwitchWorkError(start.q, s.q) > tolerance;
+  // Leaving the episode: generalized-alpha restarts from consistent accelerations (a = q'').
+  if (!switching_) initializeAccelerations(s);
+  return true;
+}
+
+bool FullOrderSolver::generalizedAlphaStep(CoupledState& s, double h, std::string& why) {
   const int n = rope_.dofs();
   const SparseMatrix& M = rope_.massMatrix();
   Eigen::VectorXd Q;
@@ -257,33 +356,75 @@ bool FullOrderSolver::tryStep(CoupledState& s, double h, std::string& why) {
     rhs.head(n) = -w.stiffness * (M * x.qdd + Q - rope_.gravityForce());
     rhs.head<3>() -= w.stiffness * x.lambda;
     rhs.tail<3>() = rc;
-    ldlt_.factorize(A_);
-    if (ldlt_.info() != Eigen::Success) {
-      reason = "singular iteration matrix";
-      return false;
-    }
-    const Eigen::VectorXd dx = ldlt_.solve(rhs);
-    dq = dx.head(n);
-    dmu = dx.tail<3>();
-    return true;
+    return solveIncrement(rhs, dq, dmu, reason);
   };
-  if (!rope_.tensionOnly() || hoisting_) {
-    return newtonStep(ga_, support_, newton_, h, increment, s, why);
-  }
+  return newtonStep(ga_, support_, newton_, h, increment, s, why);
+}
+
+// The energy-consistent step (docs/model.md "Energy-consistent step"): the trapezoidal rule
+// (Newmark, gamma = 1/2, beta = 1/4) with the rope's force at the step's end replaced by
+//   Qt_1 = 2 Qbar(q0, q1) - Qt_0,   Qt_0 = F - M q''_0 - C_q^T lambda_0,
+// Qbar the discrete gradient of the elastic energy plus the damper at the midpoint. Then
+//   M (v1 - v0) / h = M (q''_0 + q''_1) / 2 = F - Qbar - C_q^T (lambda_0 + lambda_1) / 2,
+//   q1 - q0 = h (v0 + v1) / 2,
+// so the elastic forces' work equals U(q1) - U(q0), the damper dissipates, and the constraint
+// force does no work (C is linear and holds at both ends). The support, linear, keeps its
+// equations at both ends, which the trapezoidal rule turns into the same midpoint balance.
+bool FullOrderSolver::energyConsistentStep(CoupledState& s, double h, std::string& why) {
+  const int n = rope_.dofs();
+  const SparseMatrix& M = rope_.massMatrix();
+  // The trapezoidal rule's acceleration-like variables are the accelerations.
+  s.a = s.qdd;
+  s.za = s.zdd;
   const CoupledState start = s;
-  if (!newtonStep(ga_, support_, newton_, h, increment, s, why)) return false;
-  // Step-size control at slack/taut switches (kSlackSwitchTolerance): the trapezoidal work of
-  // the tension-only axial law differs from its energy change only where a point switches.
-  // The scale: the hanging weight (standard gravity, so that g = 0 has one too) times the length.
-  const double weight =
-      9.80665 * (rope_.endMass() + rope_.element().mass_per_length * rope_.length());
-  const double tolerance = kSlackSwitchTolerance * weight * rope_.length();
-  const double err = rope_.slackSwitchWorkError(start.q, s.q);
-  if (err <= tolerance || h <= 1.5 * h_ / double(1 << kMaxHalvings)) return true;
-  why = "t = " + std::to_string(s.t) + " s: slack/taut switch work error " + std::to_string(err) +
-        " J over " + std::to_string(tolerance) + " J";
-  s = start;
-  return false;
+  Eigen::VectorXd Qt0 = rope_.gravityForce() - M * start.qdd;
+  Qt0.head<3>() -= start.lambda;
+  Eigen::VectorXd r0z;
+  if (support_.size() > 0) {
+    r0z = support_.internalForce(start.z, start.zd, start.zdd) -
+          support_.pointForceToCoordinates(start.lambda);
+  }
+  Eigen::VectorXd Q;
+  const RopeIncrement increment = [&](const CoupledState& x, const NewtonWeights& w,
+                                      const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
+                                      Eigen::Vector3d& dmu, std::string& reason) {
+    assemble(x.q, x.v, w.mass, w.stiffness, w.damping, w.G, Q, &start);
+    Eigen::VectorXd rhs(n + 3);
+    rhs.head(n) = -w.stiffness * (M * x.qdd + 2.0 * Q - Qt0 - rope_.gravityForce());
+    rhs.head<3>() -= w.stiffness * x.lambda;
+    rhs.tail<3>() = rc;
+    return solveIncrement(rhs, dq, dmu, reason);
+  };
+  if (!newtonStep(GeneralizedAlpha::newmark(), support_, newton_, h, increment, s, why,
+                  support_.size() > 0 ? &r0z : nullptr)) {
+    return false;
+  }
+  // The state keeps the step's means: lambda_m = (lambda_0 + lambda_1) / 2 (the constraint
+  // force over the step, the reported tension), q''_m = (v1 - v0) / h and z''_m likewise (the
+  // next step's predictor). The end values would alternate from step to step where the step
+  // does not resolve the rope's axial waves; the bookkeeping above makes the next step's
+  // balance independent of which are kept.
+  s.lambda = 0.5 * (start.lambda + s.lambda);
+  s.qdd = (s.v - start.v) / h;
+  s.a = s.qdd;
+  if (support_.size() > 0) {
+    s.zdd = (s.zd - start.zd) / h;
+    s.za = s.zdd;
+  }
+  return true;
+}
+
+bool FullOrderSolver::solveIncrement(const Eigen::VectorXd& rhs, Eigen::VectorXd& dq,
+                                     Eigen::Vector3d& dmu, std::string& reason) {
+  ldlt_.factorize(A_);
+  if (ldlt_.info() != Eigen::Success) {
+    reason = "singular iteration matrix";
+    return false;
+  }
+  const Eigen::VectorXd dx = ldlt_.solve(rhs);
+  dq = dx.head(rope_.dofs());
+  dmu = dx.tail<3>();
+  return true;
 }
 
 double mechanicalEnergy(const AncfRope& rope, const RopeSupport& support, const CoupledState& s) {

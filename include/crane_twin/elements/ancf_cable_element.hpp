@@ -84,6 +84,20 @@ double ancfElasticEnergy(const AncfCableProperties& p, const Vector12& e);
 void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12& Q,
                       Matrix12* K = nullptr);
 
+/// Discrete gradient of the element's elastic energy over a step e0 -> e1 (docs/model.md
+/// "Energy-consistent step", elements/discrete_gradient.hpp): Q with
+///   Q . (e1 - e0) = U(e1) - U(e0)  to round-off,   Q(e, e) = dU/de (e),
+/// summed over the Gauss points. At each point, a_k = S_x e_k, b_k = S_xx e_k, midpoint a_m, b_m:
+///   axial    phi_a += 2 Sbar a_m,  Sbar the secant of W(s) = psi(sqrt(s) - 1) over s = |a|^2;
+///   bending  Gonzalez in y = (a, l b):  grad phi_b(y_m) + c (da, l^2 db),
+///            c = (phi_b(y1) - phi_b(y0) - grad phi_b(y_m) . dy) / (|da|^2 + l^2 |db|^2)
+///            (c = 0 where |dy| <= 1e-8: the correction is then O(|dy|^2), below round-off).
+/// K, when given, is a symmetric stand-in for 2 dQ/de1 (the Newton matrix of the step), equal
+/// to the tangent stiffness K(e) for e1 = e0: axial 2 Sbar I + 8 kappa a_m a_m^T (kappa the
+/// secant's curvature), bending the Hessian of phi_b at y_m.
+void ancfElasticForceDiscreteGradient(const AncfCableProperties& p, const Vector12& e0,
+                                      const Vector12& e1, Vector12& Q, Matrix12* K = nullptr);
+
 /// Axial strain-rate damping (Kelvin-Voigt on the axial strain, `rope.damping` = c [s]):
 ///   Q_d = int c EA eps' (d eps / d e)^T dx,  eps' = t . r_x',  t = r_x / |r_x|,
 /// dissipating int c EA eps'^2 dx >= 0 and zero for rigid motions. C_d = d Q_d / d e' =

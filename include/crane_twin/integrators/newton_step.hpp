@@ -48,9 +48,16 @@ using RopeIncrement = std::function<bool(const CoupledState& s, const NewtonWeig
 /// One generalized-alpha step of size h from s: predictor, Newton corrections through
 /// `increment`, and step completion. False, with s at the step's start and the reason (with the
 /// time) in `why`, where the iteration fails (singular matrix, non-finite state, no
-/// convergence in newton.max_iterations).
+/// convergence in newton.max_iterations). With `support_start_residual` r0 (the trapezoidal rule
+/// only), the support's equation at the step's end becomes
+///   M_z z''_1 + C_z z'_1 + K_z z_1 - f_z - D^T lambda_1 + r0 = 0,
+/// r0 = M_z z''_0 + C_z z'_0 + K_z z_0 - f_z - D^T lambda_0 the start's residual, so that its
+/// mean over the step, M_z (z'_1 - z'_0) / h + C_z z'_m + K_z z_m - f_z = D^T (lambda_0 +
+/// lambda_1) / 2, holds whatever the start's z''_0 and lambda_0 (the midpoint balance of an
+/// energy-consistent step, whose start holds step means).
 bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSettings& newton,
-                double h, const RopeIncrement& increment, CoupledState& s, std::string& why);
+                double h, const RopeIncrement& increment, CoupledState& s, std::string& why,
+                const Eigen::VectorXd* support_start_residual = nullptr);
 
 /// The support's rows eliminated from a linear solve (its Schur complement): returns the
 /// condensed constraint row rc + D A_z^-1 r_z and A_z^-1 r_z in Azr, for the weights last set

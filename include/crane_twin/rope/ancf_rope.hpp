@@ -101,8 +101,9 @@ class AncfRope {
   /// Assembled tangent stiffness K(q) = dQ/dq (n x n); Q(q) into *force when given.
   SparseMatrix tangentStiffness(const Eigen::VectorXd& q, Eigen::VectorXd* force = nullptr) const;
   double elasticEnergy(const Eigen::VectorXd& q) const;
-  /// Sum of ancfSlackSwitchWorkError over the hoist rope's elements for a step q0 -> q1 [J]
-  /// (0 unless tension_only).
+  /// Sum of ancfSlackSwitchWorkError over the hoist rope's elements for a step q0 -> q1, plus the
+  /// rigging bar's |(T0 + T1) / 2 (l1 - l0) - (U1 - U0)| where it is not taut at both ends [J]
+  /// (0 unless tension_only; exactly 0 where the rope is taut at both ends).
   double slackSwitchWorkError(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) const;
   bool tensionOnly() const { return element_.tension_only; }
 

@@ -63,6 +63,14 @@ class PendulumRope {
   double tension(const Vector6& q) const;
   /// Q(q); the tangent K(q) into *K when given.
   void elasticForce(const Vector6& q, Vector6& Q, Matrix6* K = nullptr) const;
+  /// Discrete gradient of the elastic energy over a step q0 -> q1 (docs/model.md
+  /// "Energy-consistent step"): Q . (q1 - q0) = U(q1) - U(q0), Q(q, q) = dU/dq. With d = r_1 - r_0
+  /// and s = |d|^2: Q = 2 Sbar [-d_m; d_m], Sbar the secant of W(s) = U(sqrt(s))
+  /// (elements/discrete_gradient.hpp). K, when given: [[K_b, -K_b], [-K_b, K_b]] with
+  /// K_b = 2 Sbar I + 8 kappa d_m d_m^T, a symmetric stand-in for 2 dQ/dq1 equal to the tangent
+  /// stiffness for q1 = q0.
+  void discreteGradientForce(const Vector6& q0, const Vector6& q1, Vector6& Q,
+                             Matrix6* K = nullptr) const;
   /// Axial damping force Q_d(q, v) with coefficient c [s]; dQ_d/dv into *C when given.
   void dampingForce(double c, const Vector6& q, const Vector6& v, Vector6& Q,
                     Matrix6* C = nullptr) const;

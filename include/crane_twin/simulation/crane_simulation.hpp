@@ -36,6 +36,7 @@ class CraneSimulation final : public SupportedRopeSimulation {
   std::vector<bool> fullStatePositionBlocks() const override;
   std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override;
   long halvedSteps() const override { return solver_->halvedSteps(); }
+  long energyConsistentSteps() const override { return solver_->energyConsistentSteps(); }
   const AncfRope& rope() const { return *rope_; }
   const FullOrderSolver& solver() const { return *solver_; }
   double ropeLength() const override { return rope_->length(); }

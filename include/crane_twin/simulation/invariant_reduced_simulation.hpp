@@ -71,6 +71,7 @@ class InvariantReducedSimulation final : public Simulation {
   double ropeLength() const;
   int subdomains() const override { return 1; }  ///< one basis for the whole run
   long halvedSteps() const override { return solver_->halvedSteps() + full_.halvedSteps(); }
+  long energyConsistentSteps() const override { return full_.energyConsistentSteps(); }
   long handOvers() const override { return hand_overs_; }
   long fullOrderSteps() const override { return full_order_steps_; }
   bool integratingFullOrder() const override { return full_order_; }

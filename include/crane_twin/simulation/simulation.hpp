@@ -95,6 +95,9 @@ class Simulation {
   virtual double modeUpdateSeconds() const { return 0.0; }
   /// Steps taken as halves because Newton failed at the full step.
   virtual long halvedSteps() const { return 0; }
+  /// Energy-consistent steps of a tension-only ANCF rope across slack/taut switches
+  /// (FullOrderSolver::step; 0 for the other models and a rope that stays taut).
+  virtual long energyConsistentSteps() const { return 0; }
   /// Reduced rope: hand-overs to full order so far, the steps integrated at full order, and
   /// whether the current step runs at full order (0, 0, false for the other models).
   virtual long handOvers() const { return 0; }

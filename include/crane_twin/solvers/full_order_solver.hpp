@@ -66,21 +66,33 @@ class FullOrderSolver {
   /// with the constraint's second derivative r_0'' - D z'' = 0.
   void initializeAccelerations(CoupledState& s);
 
-  /// One generalized-alpha step of size h; where Newton fails, the step is halved (up to
-  /// kMaxHalvings times). Throws NumericalFailure naming the time and the reason; s is then
-  /// left at the step's start.
+  /// One step of size h; where Newton fails, the step is halved (up to kMaxHalvings times).
+  /// Throws NumericalFailure naming the time and the reason; s is then left at the step's start.
+  /// With a tension-only rope (docs/model.md "Energy-consistent step"), a generalized-alpha step
+  /// stands where the rope is taut at both of its ends; where some point is below the axial
+  /// law's linear range, only if it switches no point between slack and taut
+  /// (AncfRope::slackSwitchWorkError within kSwitchTolerance of the hanging weight times the
+  /// rope length; not asked of a hoisting step, whose uniform rescaling shifts every strain
+  /// before it) and keeps the run's sum of ropeEnergyCreated within that tolerance. Any other
+  /// step is taken energy-consistently: the trapezoidal rule with the discrete gradient of the
+  /// elastic energy, whose elastic work equals the energy change exactly. Such steps follow each
+  /// other while the rope keeps switching; the first one without a switch restores consistent
+  /// accelerations and hands back to generalized-alpha.
   void step(CoupledState& s);
   static constexpr int kMaxHalvings = 10;
-  /// Step-size control of a tension-only rope (docs/model.md "Tension-only rope"): a step whose
-  /// slack/taut switching work error (AncfRope::slackSwitchWorkError) exceeds this fraction of
-  /// the hanging weight times the rope length is halved, down to h / 2^kMaxHalvings (a step
-  /// that small is taken whatever its error).
-  static constexpr double kSlackSwitchTolerance = 1e-10;
+  static constexpr double kSwitchTolerance = 1e-10;
   /// Axial strain-rate damping of the rope, c [s] (ancfAxialDampingForce; 0: none). Throws
   /// std::invalid_argument for a negative or non-finite c.
   void setRopeDamping(double c);
   /// Half steps taken so far in place of failed steps (0 in a smooth run).
   long halvedSteps() const { return halved_steps_; }
+  /// Energy-consistent steps taken so far (slack/taut switches; 0 for a rope that stays taut).
+  long energyConsistentSteps() const { return energy_consistent_steps_; }
+
+  /// Continue another solver's run of the same scene and step: the memory of its stepping (an
+  /// energy-consistent episode under way, the energy balance, the rope length of its last
+  /// step), so that both take the same steps from the same state.
+  void continueSteppingOf(const FullOrderSolver& other);
 
   /// Re-read the rope's mass matrix after AncfRope::setLength (same pattern).
   void refreshMass();
@@ -100,10 +112,13 @@ class FullOrderSolver {
 
  private:
   // Fill the values of A_ (fixed pattern, -G in the multiplier block) and the internal force Q:
-  // elastic, plus the axial damping force at velocity v with dampWeight x C_d in A_.
+  // elastic, plus the axial damping force at velocity v with dampWeight x C_d in A_. With
+  // `from` (an energy-consistent step from that state to (q, v)): Q is the step's mean force,
+  // the discrete gradient of the elastic energy plus the damping force at the midpoint, and A_
+  // holds the derivative of twice that force.
   void assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double massWeight,
                 double stiffWeight, double dampWeight, const Eigen::Matrix3d& G,
-                Eigen::VectorXd& Q);
+                Eigen::VectorXd& Q, const CoupledState* from = nullptr);
   // Recover (dq, dz, dy) from the reduced solution x = [dq; dy] of A_ x = [r_q; r_c + D A_z^-1 r_z].
   Eigen::VectorXd condensedRhs(const Eigen::VectorXd& rq, const Eigen::VectorXd& rz,
                                const Eigen::Vector3d& rc, Eigen::VectorXd& Azinv_rz) const;
@@ -111,9 +126,24 @@ class FullOrderSolver {
   void factorize(const std::string& what);
   // One step of size h from s; false (s unchanged, the reason in why) where Newton fails.
   bool tryStep(CoupledState& s, double h, std::string& why);
+  // One generalized-alpha step, or one energy-consistent step (see step()).
+  bool generalizedAlphaStep(CoupledState& s, double h, std::string& why);
+  bool energyConsistentStep(CoupledState& s, double h, std::string& why);
+  // Factorise A_ and solve it for rhs: dq and dmu; false (reason set) where A_ is singular.
+  bool solveIncrement(const Eigen::VectorXd& rhs, Eigen::VectorXd& dq, Eigen::Vector3d& dmu,
+                      std::string& reason);
+  // kSwitchTolerance times the hanging weight (standard gravity) times the rope length [J].
+  double switchTolerance() const;
+  // The energy a step start -> s adds to the rope beyond the work of the top force and the
+  // damper's dissipation [J] (<= 0 for a dissipative step; 0 to round-off for an
+  // energy-consistent one).
+  double ropeEnergyCreated(const CoupledState& start, const CoupledState& s) const;
   long halved_steps_ = 0;
+  long energy_consistent_steps_ = 0;
+  bool switching_ = false;  ///< the last step was energy-consistent and switched
   double last_step_length_ = -1.0;  ///< the rope's length at the previous step() or start
-  bool hoisting_ = false;           ///< the length changed since: no switch control this step
+  bool hoisting_ = false;           ///< the length changed since: judged by energy alone
+  double energy_created_ = 0.0;  ///< sum of ropeEnergyCreated over the steps taken [J]
   double rope_damping_ = 0.0;
   const AncfRope& rope_;
   RopeSupport& support_;

@@ -1,0 +1,162 @@
+// Discrete gradients of the rope's strain energies (docs/model.md "Energy-consistent step"):
+// the defining identity G . (x1 - x0) = U(x1) - U(x0) across slack/taut switches, the limit
+// G(x, x) = grad U(x), and the Newton matrix's stand-in against finite differences.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "crane_twin/elements/ancf_cable_element.hpp"
+#include "crane_twin/elements/discrete_gradient.hpp"
+#include "crane_twin/rope/pendulum_rope.hpp"
+
+using namespace crane_twin;
+
+namespace {
+
+// A curved element about the x axis: a circular arc of radius R and length l, stretched by
+// 1 + eps (slopes of length 1 + eps), so that both bending and the axial law act.
+Vector12 arc(double eps, double R, double l) {
+  const double g = 1.0 + eps, phi = l / R;
+  Vector12 e;
+  e << 0.0, 0.0, 0.0, g, 0.0, 0.0,  //
+      g * R * std::sin(phi), g * R * (1.0 - std::cos(phi)), 0.0, g * std::cos(phi),
+      g * std::sin(phi), 0.0;
+  return e;
+}
+
+AncfCableProperties cable(bool tension_only) {
+  AncfCableProperties p;
+  p.length = 0.5;
+  p.mass_per_length = 1.2;
+  p.axial_stiffness = 2.2e7;
+  p.bending_stiffness = 40.0;
+  p.tension_only = tension_only;
+  return p;
+}
+
+// A random change of the coordinates of size `size` (slopes and positions alike).
+Vector12 perturbation(std::mt19937& rng, double size) {
+  std::normal_distribution<double> n(0.0, size);
+  Vector12 d;
+  for (int i = 0; i < 12; ++i) d(i) = n(rng);
+  return d;
+}
+
+}  // namespace
+
+TEST(DiscreteGradient, ElementWorkEqualsTheEnergyChangeAcrossSlackTautSwitches) {
+  std::mt19937 rng(7);
+  for (bool tension_only : {true, false}) {
+    const AncfCableProperties p = cable(tension_only);
+    // Taut to slack, slack to taut, within the smoothing band, deep slack, and the guard.
+    const double strains[][2] = {{2e-3, -2e-3}, {-3e-3, 1e-3}, {4e-6, -6e-6},
+                                 {-5e-2, -1e-2}, {-0.25, -0.1}, {1e-3, 1.5e-3}};
+    for (const auto& st : strains) {
+      for (int k = 0; k < 5; ++k) {
+        const Vector12 e0 = arc(st[0], 30.0, p.length) + perturbation(rng, 1e-4);
+        const Vector12 e1 = arc(st[1], 25.0, p.length) + perturbation(rng, 1e-4);
+        Vector12 Q;
+        ancfElasticForceDiscreteGradient(p, e0, e1, Q);
+        const double dU = ancfElasticEnergy(p, e1) - ancfElasticEnergy(p, e0);
+        // Round-off of U, which holds the axial energy of the larger strain: EA l eps^2 / 2.
+        const double eps = std::max(std::abs(st[0]), std::abs(st[1]));
+        const double scale = p.axial_stiffness * p.length * eps * eps + std::abs(dU);
+        EXPECT_NEAR(Q.dot(e1 - e0), dU, 1e-12 * scale)
+            << "tension_only " << tension_only << " eps " << st[0] << " -> " << st[1];
+      }
+    }
+  }
+}
+
+TEST(DiscreteGradient, ElementLimitIsTheElasticForceAndTangent) {
+  std::mt19937 rng(11);
+  for (bool tension_only : {true, false}) {
+    const AncfCableProperties p = cable(tension_only);
+    for (double eps : {2e-3, 3e-6, -4e-6, -1e-2}) {
+      const Vector12 e = arc(eps, 40.0, p.length) + perturbation(rng, 1e-5);
+      Vector12 Q, Qdg;
+      Matrix12 K, Kdg;
+      ancfElasticForce(p, e, Q, &K);
+      ancfElasticForceDiscreteGradient(p, e, e, Qdg, &Kdg);
+      // Both paths round the axial force at about 1e-16 EA (N from |a| here, from |a|^2 there).
+      EXPECT_LE((Qdg - Q).norm(), 1e-12 * Q.norm() + 1e-15 * p.axial_stiffness) << eps;
+      EXPECT_LE((Kdg - K).norm(), 1e-10 * K.norm()) << eps;
+    }
+  }
+}
+
+TEST(DiscreteGradient, ElementNewtonMatrixIsTwiceTheDerivativeInTheLimit) {
+  // The stand-in K of the step's Newton matrix against central differences of 2 Q(e0, e1) in
+  // e1 along a fixed direction of steps: they differ by terms of the order of the step
+  // |e1 - e0| (the stand-in is symmetric, the exact derivative is not), so the difference
+  // shrinks in proportion to the step (measured: 5.3 x the step's size per coordinate).
+  std::mt19937 rng(3);
+  const Vector12 dir = perturbation(rng, 1.0);
+  for (double EI : {0.0, 40.0}) {
+    AncfCableProperties p = cable(true);
+    p.bending_stiffness = EI;
+    const Vector12 e0 = arc(1e-3, 30.0, p.length);
+    double previous = 0.0;
+    for (double step : {1e-3, 1e-4, 1e-5}) {
+      const Vector12 e1 = e0 + step * dir;
+      Vector12 Q;
+      Matrix12 K;
+      ancfElasticForceDiscreteGradient(p, e0, e1, Q, &K);
+      Matrix12 fd;
+      const double h = 1e-7;
+      for (int j = 0; j < 12; ++j) {
+        Vector12 ep = e1, em = e1, Qp, Qm;
+        ep(j) += h;
+        em(j) -= h;
+        ancfElasticForceDiscreteGradient(p, e0, ep, Qp);
+        ancfElasticForceDiscreteGradient(p, e0, em, Qm);
+        fd.col(j) = (Qp - Qm) / h;  // 2 dQ/de1
+      }
+      const double rel = (fd - K).norm() / K.norm();
+      EXPECT_LT(rel, 10.0 * step) << "EI " << EI << " step " << step;
+      if (previous > 0.0) {
+        EXPECT_LT(rel, 0.2 * previous) << "EI " << EI << " step " << step;
+      }
+      previous = rel;
+    }
+  }
+}
+
+TEST(DiscreteGradient, BarWorkEqualsTheEnergyChangeAndLimitIsTheForce) {
+  const Eigen::Vector3d g(0.0, 0.0, -9.81);
+  for (bool tension_only : {true, false}) {
+    PendulumRope bar(5.0, 1.0, 2.0e7, 3000.0, g);
+    bar.setTensionOnly(tension_only);
+    const Eigen::Vector3d top(1.0, 2.0, 3.0);
+    for (const auto& l01 : {std::pair{5.003, 4.99}, {4.98, 5.001}, {5.002, 5.004}, {4.9, 4.95}}) {
+      const Vector6 q0 = PendulumRope::straight(top, Eigen::Vector3d(0.6, 0.0, -0.8), l01.first);
+      const Vector6 q1 = PendulumRope::straight(top, Eigen::Vector3d(0.0, 0.6, -0.8), l01.second);
+      Vector6 Q;
+      bar.discreteGradientForce(q0, q1, Q);
+      const double dU = bar.elasticEnergy(q1) - bar.elasticEnergy(q0);
+      EXPECT_NEAR(Q.dot(q1 - q0), dU, 1e-12 * (2.0e7 / 5.0 * 0.01 * 0.01 + std::abs(dU)));
+      Vector6 Qe, Qdg;
+      Matrix6 Ke, Kdg;
+      bar.elasticForce(q0, Qe, &Ke);
+      bar.discreteGradientForce(q0, q0, Qdg, &Kdg);
+      EXPECT_LE((Qdg - Qe).norm(), 1e-9 * (1.0 + Qe.norm()));
+      EXPECT_LE((Kdg - Ke).norm(), 1e-9 * (1.0 + Ke.norm()));
+    }
+  }
+}
+
+TEST(DiscreteGradient, SquaredLengthSecantIsTheSecantAndItsLimit) {
+  // W(s) = s^3: the secant (s1^3 - s0^3) / (s1 - s0) = s0^2 + s0 s1 + s1^2; its derivative in
+  // s1 is s0 + 2 s1; the limit 3 s^2 and 3 s (W'' / 2).
+  const auto W = [](double s) { return s * s * s; };
+  const auto dW = [](double s) { return 3.0 * s * s; };
+  const auto ddW = [](double s) { return 6.0 * s; };
+  const SquaredLengthSecant a = squaredLengthSecant(1.0, 1.5, W, dW, ddW);
+  EXPECT_NEAR(a.slope, 1.0 + 1.5 + 2.25, 1e-14);
+  EXPECT_NEAR(a.curvature, (dW(1.5) - a.slope) / 0.5, 1e-14);
+  EXPECT_NEAR(a.curvature, 1.0 + 2.0 * 1.5, 1e-12);  // d/ds1 (s0^2 + s0 s1 + s1^2) = s0 + 2 s1
+  const SquaredLengthSecant b = squaredLengthSecant(1.2, 1.2 + 1e-10, W, dW, ddW);
+  EXPECT_NEAR(b.slope, 3.0 * 1.2 * 1.2, 1e-9);
+  EXPECT_NEAR(b.curvature, 3.0 * 1.2, 1e-9);
+}
