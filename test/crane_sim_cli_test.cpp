@@ -426,3 +426,19 @@ TEST(CraneSimCli, PhysicalWarningsReachTheCsvAndStderr) {
   EXPECT_NE(wll.out.find("warnings_seen=32 warning_rows=32:11"), std::string::npos) << wll.out;
   EXPECT_EQ(run("run " + kScene + " --set rope.safety_factor=0.5 --quiet").status, 2);
 }
+
+TEST(CraneSimCli, SummaryCountsEnergyConsistentSteps) {
+  // docs/cli.md: the summary's energy_consistent_steps and halved_steps. A taut rope takes none;
+  // the shipped slack throw (its first 0.6 s: thrown up, slack, snatched) takes them.
+  const Result taut = run("run " + kScene + " --set rope.model=full --set structure.model=rigid"
+                          " --set rope.elements=10 --set duration=0.1 --quiet");
+  EXPECT_NE(taut.out.find(" energy_consistent_steps=0 halved_steps=0\n"), std::string::npos)
+      << taut.out;
+  const Result slack = run("run " + std::string(CRANE_TWIN_SOURCE_DIR) +
+                           "/config/scenes/hard_slack_throw.yaml --set rope.elements=20"
+                           " --set structure.model=rigid --set duration=0.6 --quiet");
+  ASSERT_EQ(slack.status, 0) << slack.out;
+  const std::size_t at = slack.out.find(" energy_consistent_steps=");
+  ASSERT_NE(at, std::string::npos) << slack.out;
+  EXPECT_GT(std::stol(slack.out.substr(at + 25)), 0) << slack.out;
+}
