@@ -698,11 +698,16 @@ void CraneSimNode::run() {
     if (awaiting_recorder_ && (now - last_recorder_check_).toSec() >= 0.1) {
       last_recorder_check_ = now;
       std::string missing;
-      if (recorderSubscribed(missing)) {
+      if (!recorderSubscribed(missing)) {
+        recorder_seen_ = ros::WallTime();
+      } else if (recorder_seen_.isZero()) {
+        recorder_seen_ = now;  // subscribed: let its connections settle before the first step
+      } else if ((now - recorder_seen_).toSec() >= kRecorderSettleSeconds) {
         awaiting_recorder_ = false;
         ROS_INFO("crane_sim_node: %s is recording; starting", settings_.wait_for_recorder.c_str());
         publish();
-      } else if ((now - last_warn_wall_).toSec() >= 5.0) {
+      }
+      if (awaiting_recorder_ && !missing.empty() && (now - last_warn_wall_).toSec() >= 5.0) {
         last_warn_wall_ = now;
         ROS_WARN("crane_sim_node: waiting for %s to subscribe to%s",
                  settings_.wait_for_recorder.c_str(), missing.c_str());

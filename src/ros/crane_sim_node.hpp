@@ -126,6 +126,11 @@ class CraneSimNode {
 
   bool paused_ = false, finished_ = false, failed_ = false;
   bool awaiting_recorder_ = false;
+  /// When the recorder was first seen subscribed and connected (zero: not yet); the first step
+  /// waits kRecorderSettleSeconds more, for the recorder's own set-up of its subscriptions (a
+  /// recording at real_time_factor 0 lost its first states without it).
+  ros::WallTime recorder_seen_;
+  static constexpr double kRecorderSettleSeconds = 0.5;
   std::string failure_;
   ros::Time stamp_origin_;
   double next_publish_ = 0.0;
