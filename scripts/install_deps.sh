@@ -15,6 +15,7 @@ ROS_PKGS=(
   ros-geometry-msgs ros-visualization-msgs libtf2-ros-dev librostest-dev python3-rostest
   ros-trajectory-msgs libtrajectory-msgs-dev python3-trajectory-msgs
   ros-std-srvs ros-diagnostic-msgs ros-rosgraph-msgs ros-tf2-msgs librosbag-dev python3-rosbag
+  libtopic-tools-dev catkin-lint liburdfdom-tools
   python3-rospy python3-roslaunch python3-rostopic rviz tf2-tools
   ros-nav-msgs libnav-msgs-dev python3-nav-msgs python3-sensor-msgs python3-geometry-msgs
   python3-tf2-ros python3-std-srvs python3-std-msgs python3-diagnostic-msgs rosbash

@@ -152,7 +152,6 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
       watchdog_(settings_.command_timeout) {
   if (settings_.duration < 0.0) settings_.duration = model_.scene.duration;
   paused_ = settings_.start_paused;
-  awaiting_recorder_ = !settings_.wait_for_recorder.empty();
   // The crane on the site: world -> <prefix>base, latched (docs/site.md).
   frames_.prefix = settings_.frame_prefix;
   Eigen::Vector3d base = model_.scene.site_position;
@@ -168,6 +167,8 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   twin_ = std::make_unique<TwinAdapter>(nh_, settings_.twin, frames_, base, yaw);
   loadReplay();
   resetSimulation();
+  recorder_ = std::make_unique<RecorderLink>(nh_, settings_.wait_for_recorder,
+                                             settings_.recorded_topics);
   // Queues for bursts: as fast as possible a recorder takes every publication.
   joint_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 1000);
   state_pub_ = nh_.advertise<CraneState>("crane/state", 1000);  // rtf 0: bursts
@@ -553,15 +554,18 @@ void CraneSimNode::publish() {
     clock_pub_.publish(c);
   }
   joint_pub_.publish(toJointState(s, st));
+  recorder_->published(joint_pub_);
   tf_.sendTransform(toTransforms(s, st + tf_stamp_offset_, frames_));
   const double payload_mass = model_.scene.payload_mass;
   marker_pub_.publish(
       toMarkers(s, st, loadShapes(s, model_.scene.hookBlockMass(), payload_mass), payload_mass,
                 frames_));
+  recorder_->published(marker_pub_);
   last_state_ =
       toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model, frames_);
   last_state_.t += t_offset_;
   state_pub_.publish(last_state_);
+  recorder_->published(state_pub_);
   last_state_wall_ = now;
   if (!failed_) twin_->publish(*sim_, st, forecastCommand(), [this](double t) { return stamp(t); });
 }
@@ -643,47 +647,15 @@ void CraneSimNode::publishDiagnostics() {
   diag_pub_.publish(a);
 }
 
-bool CraneSimNode::recorderSubscribed(std::string& missing) const {
-  // getSystemState: [publishers, subscribers, services], each [[name, [node, ...]], ...].
-  XmlRpc::XmlRpcValue request, response, payload;
-  request[0] = ros::this_node::getName();
-  if (!ros::master::execute("getSystemState", request, response, payload, false)) {
-    missing = " (the master did not answer)";
-    return false;
-  }
-  const std::string recorder = nh_.resolveName(settings_.wait_for_recorder);
-  std::set<std::string> subscribed;
-  std::map<std::string, int> registered;  // subscribers per topic on the master
-  XmlRpc::XmlRpcValue& subscribers = payload[1];
-  for (int i = 0; i < subscribers.size(); ++i) {
-    XmlRpc::XmlRpcValue& nodes = subscribers[i][1];
-    const std::string topic = subscribers[i][0];
-    registered[topic] = nodes.size();
-    for (int j = 0; j < nodes.size(); ++j)
-      if (static_cast<std::string>(nodes[j]) == recorder) subscribed.insert(topic);
-  }
-  // A registration precedes the connection: our own publishers must also have connected every
-  // registered subscriber, or the first messages would go nowhere.
-  const std::vector<const ros::Publisher*> own = {&state_pub_, &joint_pub_, &marker_pub_,
-                                                  &applied_pub_, &diag_pub_, &clock_pub_};
-  missing.clear();
-  for (const std::string& topic : settings_.recorded_topics) {
-    const std::string name = nh_.resolveName(topic);
-    bool connected = subscribed.count(name) > 0;
-    for (const ros::Publisher* p : own)
-      if (*p && p->getTopic() == name && static_cast<int>(p->getNumSubscribers()) < registered[name])
-        connected = false;
-    if (!connected) missing += " " + name;
-  }
-  return missing.empty();
-}
-
 // Pacing: with real_time_factor f > 0, simulated time follows f x wall time from an anchor;
 // a lag of more than 0.25 s re-anchors (counted as an overrun) instead of racing to catch up.
 // With f = 0 the node steps from one publication to the next as fast as it can.
 void CraneSimNode::run() {
   const double dt = model_.scene.time_step, period = 1.0 / settings_.publish_rate;
-  if (!awaiting_recorder_) publish();  // else once the recorder listens: the bag starts at t = 0
+  const std::vector<const ros::Publisher*> own = {&state_pub_, &joint_pub_, &marker_pub_,
+                                                  &applied_pub_, &diag_pub_, &clock_pub_};
+  bool awaiting_recorder = recorder_->enabled();
+  if (!awaiting_recorder) publish();  // else once the recorder listens: the bag starts at t = 0
   next_publish_ = sim_->time() + period;
   ros::WallTime anchor_wall = ros::WallTime::now();
   double anchor_sim = sim_->time();
@@ -695,25 +667,15 @@ void CraneSimNode::run() {
       last_diag_wall_ = now;
       publishDiagnostics();
     }
-    if (awaiting_recorder_ && (now - last_recorder_check_).toSec() >= 0.1) {
-      last_recorder_check_ = now;
-      std::string missing;
-      if (!recorderSubscribed(missing)) {
-        recorder_seen_ = ros::WallTime();
-      } else if (recorder_seen_.isZero()) {
-        recorder_seen_ = now;  // subscribed: let its connections settle before the first step
-      } else if ((now - recorder_seen_).toSec() >= kRecorderSettleSeconds) {
-        awaiting_recorder_ = false;
-        ROS_INFO("crane_sim_node: %s is recording; starting", settings_.wait_for_recorder.c_str());
-        publish();
-      }
-      if (awaiting_recorder_ && !missing.empty() && (now - last_warn_wall_).toSec() >= 5.0) {
-        last_warn_wall_ = now;
-        ROS_WARN("crane_sim_node: waiting for %s to subscribe to%s",
-                 settings_.wait_for_recorder.c_str(), missing.c_str());
-      }
+    if (awaiting_recorder && recorder_->ready(own)) {
+      awaiting_recorder = false;
+      publish();  // the bag starts at t = 0
     }
-    const bool running = !paused_ && !finished_ && !failed_ && !awaiting_recorder_;
+    const bool running = !paused_ && !finished_ && !failed_ && !awaiting_recorder;
+    if (running && recorder_->behind()) {  // a recorder falling behind holds the run
+      ros::WallDuration(0.001).sleep();
+      continue;
+    }
     if (!running) {
       was_running = false;
       // Paused as in gazebo_ros: the frozen state keeps coming at ~publish_rate of wall time.
@@ -723,14 +685,7 @@ void CraneSimNode::run() {
         publishPaused();
       }
       if (finished_ && settings_.shutdown_at_end) {
-        // A recorder still has our last messages in flight: give it a second to write them.
-        if (!settings_.wait_for_recorder.empty()) {
-          const ros::WallTime until = now + ros::WallDuration(1.0);
-          while (ros::ok() && ros::WallTime::now() < until) {
-            ros::spinOnce();
-            ros::WallDuration(0.02).sleep();
-          }
-        }
+        recorder_->drain();  // the recorder writes our last messages
         break;
       }
       ros::WallDuration(std::min(period, 0.05)).sleep();
@@ -773,6 +728,7 @@ void CraneSimNode::run() {
         // message sent before its subscription connected is lost, so repeat it now and then.
         if ((now - last_state_wall_).toSec() >= 0.2) {
           state_pub_.publish(last_state_);
+          recorder_->published(state_pub_);
           last_state_wall_ = now;
         }
         ros::WallDuration(0.001).sleep();

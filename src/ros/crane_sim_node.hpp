@@ -25,6 +25,7 @@
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/analysis/crane_snapshot.hpp"
 #include "crane_twin/simulation/simulation.hpp"
+#include "recorder_link.hpp"
 #include "ros_messages.hpp"
 #include "twin_adapter.hpp"
 
@@ -51,8 +52,9 @@ struct NodeSettings {
   bool shutdown_at_end = false;
   bool start_paused = false;           ///< wait for ~pause false before the first step
   std::string command_bag;             ///< replay crane/command_applied from this bag
-  /// Hold the first step until this node (a rosbag recorder, resolved in the node's namespace)
-  /// subscribes to every topic of recorded_topics, so a recording starts at t = 0.
+  /// Hold the first step until this node (a recorder, resolved in the node's namespace)
+  /// subscribes to every topic of recorded_topics, so a recording starts at t = 0; pace the run
+  /// to it when it reports its progress (crane_recorder, RecorderLink).
   std::string wait_for_recorder;
   /// Before every frame the node publishes (docs/site.md), e.g. "crane_a/".
   std::string frame_prefix;
@@ -125,12 +127,7 @@ class CraneSimNode {
   CraneFrames frames_;
 
   bool paused_ = false, finished_ = false, failed_ = false;
-  bool awaiting_recorder_ = false;
-  /// When the recorder was first seen subscribed and connected (zero: not yet); the first step
-  /// waits kRecorderSettleSeconds more, for the recorder's own set-up of its subscriptions (a
-  /// recording at real_time_factor 0 lost its first states without it).
-  ros::WallTime recorder_seen_;
-  static constexpr double kRecorderSettleSeconds = 0.5;
+  std::unique_ptr<RecorderLink> recorder_;  ///< the recording's start, pace and end
   std::string failure_;
   ros::Time stamp_origin_;
   double next_publish_ = 0.0;
@@ -144,14 +141,11 @@ class CraneSimNode {
   long steps_ = 0, rejected_ = 0, overruns_ = 0;
   int warnings_seen_ = 0;
   double last_wind_3s_ = 0.0;  ///< 3 s mean wind at the jib in the last publication [m/s]
-  ros::WallTime last_warn_wall_, last_diag_wall_, last_recorder_check_;
+  ros::WallTime last_warn_wall_, last_diag_wall_;
 
   void loadReplay();
   void resetSimulation();
   bool stepOnce();
-  /// True once settings_.wait_for_recorder subscribes to every recorded topic (master query);
-  /// the missing topics in `missing`.
-  bool recorderSubscribed(std::string& missing) const;
   void applyDueCommands();
   void apply(const CommandEntry& c, const char* source);
   void publish();
