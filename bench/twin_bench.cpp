@@ -12,8 +12,8 @@ using namespace crane_twin;
 
 namespace {
 CraneModel liveScene() {
-  return buildCraneModel(loadScene(std::string(CRANE_TWIN_SOURCE_DIR) +
-                                   "/config/scenes/t8036_live.yaml", {}));
+  return buildCraneModel(
+      loadScene(std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_live.yaml", {}));
 }
 }  // namespace
 

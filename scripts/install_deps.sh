@@ -8,14 +8,14 @@ CORE_PKGS=(
   build-essential cmake pkg-config
   libeigen3-dev libsuitesparse-dev libarpack2-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev libboost-dev
-  parallel python3-yaml
+  parallel python3-yaml clang-format
 )
 ROS_PKGS=(
   catkin ros-core-dev ros-message-generation ros-std-msgs ros-sensor-msgs
   ros-geometry-msgs ros-visualization-msgs libtf2-ros-dev librostest-dev python3-rostest
   ros-trajectory-msgs libtrajectory-msgs-dev python3-trajectory-msgs
   ros-std-srvs ros-diagnostic-msgs ros-rosgraph-msgs ros-tf2-msgs librosbag-dev python3-rosbag
-  libtopic-tools-dev catkin-lint liburdfdom-tools
+  libtopic-tools-dev catkin-lint python3-rosdep2 liburdfdom-tools
   python3-rospy python3-roslaunch python3-rostopic rviz tf2-tools
   ros-nav-msgs libnav-msgs-dev python3-nav-msgs python3-sensor-msgs python3-geometry-msgs
   python3-tf2-ros python3-std-srvs python3-std-msgs python3-diagnostic-msgs rosbash

@@ -1,10 +1,11 @@
 // Checks of the ANCF cable element against docs/model.md: shape functions, mass, and the analytic
 // force and tangent against finite differences of the energy.
+#include "crane_twin/elements/ancf_cable_element.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
-#include "crane_twin/elements/ancf_cable_element.hpp"
 #include "crane_twin/elements/gauss_legendre.hpp"
 
 using namespace crane_twin;
@@ -71,7 +72,8 @@ void expectForceIsEnergyGradient(const AncfCableProperties& p, const Vector12& e
     em(i) -= h;
     fd(i) = (ancfElasticEnergy(p, ep) - ancfElasticEnergy(p, em)) / (2 * h);
   }
-  EXPECT_LT((Q - fd).norm(), 1e-6 * Q.norm()) << "Q = " << Q.transpose() << "\nfd = " << fd.transpose();
+  EXPECT_LT((Q - fd).norm(), 1e-6 * Q.norm())
+      << "Q = " << Q.transpose() << "\nfd = " << fd.transpose();
 }
 
 void expectTangentIsForceJacobian(const AncfCableProperties& p, const Vector12& e) {
@@ -196,8 +198,7 @@ TEST(AncfForce, AxialForceOfUniformStretch) {
   // Uniform strain eps: nodal axial forces -/+ EA eps (closed form).
   const AncfCableProperties p = ropeElement();
   const double eps = 1e-3;
-  Vector12 e = straight(Eigen::Vector3d::Zero(), (1 + eps) * Eigen::Vector3d::UnitX(),
-                        p.length);
+  Vector12 e = straight(Eigen::Vector3d::Zero(), (1 + eps) * Eigen::Vector3d::UnitX(), p.length);
   Vector12 Q;
   ancfElasticForce(p, e, Q);
   EXPECT_NEAR(Q(0), -p.axial_stiffness * eps, 1e-6 * p.axial_stiffness * eps);

@@ -27,7 +27,8 @@ std::vector<Eigen::Vector3d> payloadPath(const std::string& scene, std::vector<s
   const long steps = std::lround(duration / dt), stride = std::lround(every / dt);
   for (long k = 1; k <= steps; ++k) {
     sim.step();
-    if (k % stride == 0) path.push_back(AncfRope::nodePosition(sim.state().q, sim.rope().nodes() - 1));
+    if (k % stride == 0)
+      path.push_back(AncfRope::nodePosition(sim.state().q, sim.rope().nodes() - 1));
   }
   return path;
 }
@@ -48,16 +49,17 @@ std::vector<double> timeStepOrders(const std::string& label, const std::string& 
     err.push_back(maxDistance(payloadPath(scene, sets, dt, duration, h0), ref));
   }
   for (std::size_t i = 1; i < err.size(); ++i) orders.push_back(std::log2(err[i - 1] / err[i]));
-  std::printf("%s: max payload error %.3g / %.3g / %.3g m at dt %g / %g / %g ms; orders %.2f, %.2f\n",
-              label.c_str(), err[0], err[1], err[2], 1e3 * h0, 500 * h0, 250 * h0, orders[0],
-              orders[1]);
+  std::printf(
+      "%s: max payload error %.3g / %.3g / %.3g m at dt %g / %g / %g ms; orders %.2f, %.2f\n",
+      label.c_str(), err[0], err[1], err[2], 1e3 * h0, 500 * h0, 250 * h0, orders[0], orders[1]);
   return orders;
 }
 }  // namespace
 
 TEST(Convergence, TimeStepOrderIsTwoForTheAnchoredRope) {
-  const auto orders = timeStepOrders("anchored rope (30 elements, 2 s)", "rope_pendulum_chrono.yaml",
-                                     {"rope.elements=30", "initial.mode=equilibrium"}, 0.008, 2.0);
+  const auto orders =
+      timeStepOrders("anchored rope (30 elements, 2 s)", "rope_pendulum_chrono.yaml",
+                     {"rope.elements=30", "initial.mode=equilibrium"}, 0.008, 2.0);
   for (double p : orders) EXPECT_GT(p, 1.8);
 }
 
@@ -78,16 +80,18 @@ TEST(Convergence, ElementCountOrderOfTheHangingChainModes) {
   const double exact = boost::math::cyl_bessel_j_zero(0.0, 6) / 2.0 * std::sqrt(g / L);
   std::vector<double> err;
   for (int n : {4, 8, 16, 32}) {
-    const CraneModel m = buildCraneModel(loadScene(
-        kScenes + "rope_pendulum_chrono.yaml",
-        {"payload.mass=0", "rope.bending=false", "rope.tension_only=false",
-         "rope.elements=" + std::to_string(n)}));
+    const CraneModel m = buildCraneModel(
+        loadScene(kScenes + "rope_pendulum_chrono.yaml",
+                  {"payload.mass=0", "rope.bending=false", "rope.tension_only=false",
+                   "rope.elements=" + std::to_string(n)}));
     CraneSimulation sim(m);
     const ModalBasis b = sim.ropeModes(12);
     err.push_back(std::abs(std::sqrt(b.omega2(10)) - exact) / exact);
   }
-  std::printf("hanging chain 6th mode relative error at 4/8/16/32 elements: %.3g %.3g %.3g %.3g;"
-              " orders", err[0], err[1], err[2], err[3]);
+  std::printf(
+      "hanging chain 6th mode relative error at 4/8/16/32 elements: %.3g %.3g %.3g %.3g;"
+      " orders",
+      err[0], err[1], err[2], err[3]);
   for (std::size_t i = 1; i < err.size(); ++i) std::printf(" %.2f", std::log2(err[i - 1] / err[i]));
   std::printf("\n");
   // Cubic Hermite elements for a second-order operator: at least the O(h^2) of linear elements;

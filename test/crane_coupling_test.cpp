@@ -34,8 +34,8 @@ TEST(CraneCoupling, StaticJibDeflectionEqualsLinearSolveUnderTheHangingWeight) {
   const CoupledState s = sim.staticState();
   const double g = m.scene.gravity, mt = m.scene.crane->trolley_mass;
   const double hanging = m.end_mass + m.ropeMass();
-  const Eigen::VectorXd u = staticTrolleyLoadDisplacement(*m.structure, mt + hanging,
-                                                          m.scene.trolley_radius, g);
+  const Eigen::VectorXd u =
+      staticTrolleyLoadDisplacement(*m.structure, mt + hanging, m.scene.trolley_radius, g);
   const Eigen::Vector3d expected = jibTipDisplacement(*m.structure, u);
   const Eigen::Vector3d tip = sim.support().jibTipDisplacement(s.z);
   EXPECT_NEAR((tip - expected).norm(), 0.0, 1e-6 * expected.norm())
@@ -84,7 +84,8 @@ TEST(CraneCoupling, ModalAndFullStructureTrackEachOtherDynamically) {
   for (int k = 0; k < 400; ++k) {
     modal.step();
     full.step();
-    maxDiff = std::max(maxDiff, (payload(modal, modal.state()) - payload(full, full.state())).norm());
+    maxDiff =
+        std::max(maxDiff, (payload(modal, modal.state()) - payload(full, full.state())).norm());
   }
   std::printf("modal vs full structure: max payload difference %.3g m\n", maxDiff);
   EXPECT_LT(maxDiff, 0.01);  // budget: the 1 cm of the reduced model's target

@@ -5,15 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <map>
-
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 
 #include "crane_twin/io/config_reader.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
-#include "crane_twin/simulation/reduced_crane_simulation.hpp"
+#include "crane_twin/simulation/subdomain_reduced_simulation.hpp"
 
 using namespace crane_twin;
 
@@ -22,8 +21,8 @@ const std::string kScene =
     std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_combination1.yaml";
 
 CraneModel t8036(std::vector<std::string> sets) {
-  sets.insert(sets.begin(), {"rope.model=full", "rope.elements=20", "time_step=0.01",
-                             "initial.swing_deg=0"});
+  sets.insert(sets.begin(),
+              {"rope.model=full", "rope.elements=20", "time_step=0.01", "initial.swing_deg=0"});
   return buildCraneModel(loadScene(kScene, sets));
 }
 
@@ -49,9 +48,9 @@ TEST(CraneDrives, TrolleyScheduleEndsAtTheClosedFormRadius) {
 TEST(CraneDrives, SlewingTurnsTheTrolleyPointAndTheFlexibleJib) {
   // 0.05 rad/s for pi/2 / 0.05 s: a quarter turn; modal structure, 20 modes.
   const double T = M_PI / 2 / 0.05;
-  CraneSimulation sim(t8036({"structure.model=modal", "structure.modes=20",
-                             "commands=[{t: 0, slew_rate: 0.05}, {t: " + std::to_string(T) +
-                                 ", slew_rate: 0}]"}));
+  CraneSimulation sim(
+      t8036({"structure.model=modal", "structure.modes=20",
+             "commands=[{t: 0, slew_rate: 0.05}, {t: " + std::to_string(T) + ", slew_rate: 0}]"}));
   // The jib's deflection under the hanging load at rest, before the turn (slewing frame).
   const CoupledState s0 = sim.staticState();
   const Eigen::Vector3d tip0 = sim.support().jibTipDisplacement(s0.z);
@@ -75,10 +74,12 @@ TEST(CraneDrives, SlewingTurnsTheTrolleyPointAndTheFlexibleJib) {
   const Eigen::AngleAxisd toSlewing(-theta, Eigen::Vector3d::UnitZ());
   const Eigen::Vector3d sag = toSlewing * (v.trolley - p0);
   const Eigen::Vector3d hang = toSlewing * (v.payload - v.trolley);
-  std::printf("after a quarter turn: load (%.2f, %.2f) m from under the trolley; trolley sag "
-              "(%.4f, %.4f, %.4f) m in the slewing frame, static (%.4f, %.4f, %.4f) m; jib tip "
-              "dz %.4f m, static %.4f m\n", hang.x(), hang.y(), sag.x(), sag.y(), sag.z(),
-              sag0.x(), sag0.y(), sag0.z(), v.jib_tip.z(), tip0.z());
+  std::printf(
+      "after a quarter turn: load (%.2f, %.2f) m from under the trolley; trolley sag "
+      "(%.4f, %.4f, %.4f) m in the slewing frame, static (%.4f, %.4f, %.4f) m; jib tip "
+      "dz %.4f m, static %.4f m\n",
+      hang.x(), hang.y(), sag.x(), sag.y(), sag.z(), sag0.x(), sag0.y(), sag0.z(), v.jib_tip.z(),
+      tip0.z());
   EXPECT_LT(sag0.z(), -0.1);
   EXPECT_NEAR(sag.z(), sag0.z(), 0.1 * std::abs(sag0.z()));
   EXPECT_NEAR(sag.x(), sag0.x(), 0.1 * std::abs(sag0.z()));
@@ -153,8 +154,8 @@ TEST(CraneDrives, HoistingConservesMassAndSettlesAtTheNewTension) {
   // 60 m to 20 m at 1 m/s (40 s, ramps cancel), then 30 s at rest: the length is the closed
   // form, the rope mass is mu L exactly, and the mean top tension over the last 10 s equals
   // (M + mu L_new) g within 0.5 %.
-  CraneSimulation sim(t8036({"structure.model=rigid",
-                             "commands=[{t: 0, hoist_speed: -1.0}, {t: 40, hoist_speed: 0}]"}));
+  CraneSimulation sim(t8036(
+      {"structure.model=rigid", "commands=[{t: 0, hoist_speed: -1.0}, {t: 40, hoist_speed: 0}]"}));
   sim.initialize();
   run(sim, 60.0);
   EXPECT_NEAR(sim.ropeLength(), 20.0, 1e-9);
@@ -175,9 +176,9 @@ TEST(CraneDrives, HoistingConservesMassAndSettlesAtTheNewTension) {
 
 TEST(CraneDrives, ReducedHoistingSettlesAtTheNewTension) {
   // The reduced rope (10 modes) hoisted 60 m to 20 m as above: the same closed form.
-  ReducedCraneSimulation sim(t8036({"structure.model=rigid", "rope.model=reduced",
-                                    "rope.mode_count=10",
-                                    "commands=[{t: 0, hoist_speed: -1.0}, {t: 40, hoist_speed: 0}]"}));
+  SubdomainReducedSimulation sim(
+      t8036({"structure.model=rigid", "rope.model=reduced", "rope.mode_count=10",
+             "commands=[{t: 0, hoist_speed: -1.0}, {t: 40, hoist_speed: 0}]"}));
   sim.initialize();
   run(sim, 60.0);
   EXPECT_NEAR(sim.crane().ropeLength(), 20.0, 1e-9);
@@ -187,9 +188,10 @@ TEST(CraneDrives, ReducedHoistingSettlesAtTheNewTension) {
     sum += sim.series().rope_top_tension;
   }
   const double mean = sum / 1000, expected = (3600.0 + 2044.0 + 3.8 * 20.0) * 9.81;
-  std::printf("reduced, after hoisting to 20 m: mean top tension %.1f N, (M + mu L) g = %.1f N, "
-              "%d subdomains, %d static corrections\n", mean, expected, sim.subdomains(),
-              sim.solver().statistics().static_corrections);
+  std::printf(
+      "reduced, after hoisting to 20 m: mean top tension %.1f N, (M + mu L) g = %.1f N, "
+      "%d subdomains, %d static corrections\n",
+      mean, expected, sim.subdomains(), sim.solver().statistics().static_corrections);
   EXPECT_NEAR(mean, expected, 0.005 * expected);
   EXPECT_GT(sim.solver().statistics().static_corrections, 0);
 }
@@ -217,13 +219,13 @@ TEST(CraneDrives, SwingPeriodAfterHoistingMatchesTheNewLength) {
   EXPECT_NEAR(period, T, 0.005 * T);
 }
 
-
 TEST(CraneDrives, ReducedTracksFullOnTheDriveScenes) {
   // Reduced against full on every drive scene, payload error at most 0.3 m (budget). Slewing
   // and trolley travel on a coarser mesh and step than the shipped scenes, 40 s, to keep the
   // test short; the hoisting scenes over their whole schedule at their own mesh and step (60
-  // elements, 5 ms, 100 structure modes): on 20 elements and 10 ms the operator cycle's large swing cuts a subdomain
-  // every other step and the reduced run drifts 2.4 m from the full one (docs/model.md).
+  // elements, 5 ms, 100 structure modes): on 20 elements and 10 ms the operator cycle's large swing
+  // cuts a subdomain every other step and the reduced run drifts 2.4 m from the full one
+  // (docs/model.md).
   for (const char* scene : {"t8036_slew90.yaml", "t8036_trolley_80_to_30.yaml",
                             "t8036_hoist_60_20_50.yaml", "t8036_operator_cycle.yaml"}) {
     const std::string path = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/" + scene;
@@ -231,7 +233,8 @@ TEST(CraneDrives, ReducedTracksFullOnTheDriveScenes) {
                           std::string(scene).find("cycle") != std::string::npos;
     std::vector<std::string> sets = {"output_interval=0.1", "rope.mode_count=10"};
     if (!hoisting) {
-      sets.insert(sets.end(), {"rope.elements=20", "time_step=0.01", "duration=40", "structure.modes=20"});
+      sets.insert(sets.end(),
+                  {"rope.elements=20", "time_step=0.01", "duration=40", "structure.modes=20"});
     }
     auto with = [&](const char* model) {
       std::vector<std::string> s = sets;
@@ -239,7 +242,7 @@ TEST(CraneDrives, ReducedTracksFullOnTheDriveScenes) {
       return buildCraneModel(loadScene(path, s));
     };
     CraneSimulation full(with("full"));
-    ReducedCraneSimulation red(with("reduced"));
+    SubdomainReducedSimulation red(with("reduced"));
     full.initialize();
     red.initialize();
     double err = 0.0;
@@ -265,8 +268,8 @@ TEST(CraneDrives, ReducedTracksFullOnTheDriveScenes) {
         {"t8036_operator_cycle.yaml", {0.05 * 20.94, 50.0, 60.0, 2e-2}}};
     const std::array<double, 4> e = end.at(scene);
     EXPECT_LT(err, e[3]) << scene;
-    for (const Simulation* sim : {static_cast<const Simulation*>(&full),
-                                  static_cast<const Simulation*>(&red)}) {
+    for (const Simulation* sim :
+         {static_cast<const Simulation*>(&full), static_cast<const Simulation*>(&red)}) {
       EXPECT_NEAR(sim->drives().slewAngle(), e[0], 1e-6) << scene;
       EXPECT_NEAR(sim->drives().trolleyRadius(), e[1], 1e-6) << scene;
       EXPECT_NEAR(sim->series().rope_length, e[2], 1e-6) << scene;
@@ -276,8 +279,8 @@ TEST(CraneDrives, ReducedTracksFullOnTheDriveScenes) {
 
 TEST(CraneDrives, ReducedModelTakesCommandsThroughTheSimulationInterface) {
   // The ROS node drives the reduced crane through Simulation::setCommand.
-  const std::unique_ptr<Simulation> sim = makeSimulation(
-      t8036({"structure.model=rigid", "rope.model=reduced", "rope.mode_count=6"}));
+  const std::unique_ptr<Simulation> sim =
+      makeSimulation(t8036({"structure.model=rigid", "rope.model=reduced", "rope.mode_count=6"}));
   sim->initialize();
   CommandEntry c;
   c.trolley_speed = -0.3;

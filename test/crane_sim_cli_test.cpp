@@ -1,17 +1,17 @@
 // crane_sim as a user runs it: output formats of docs/cli.md and exit codes.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 
-#include "crane_twin/simulation/invariant_reduced_simulation.hpp"
-
+#include <algorithm>
 #include <array>
 #include <cmath>
-#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 #include <vector>
+
+#include "crane_twin/simulation/invariant_reduced_simulation.hpp"
 
 namespace {
 
@@ -38,7 +38,8 @@ std::vector<std::string> lines(const std::string& s) {
   return v;
 }
 
-const std::string kScene = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_combination1.yaml";
+const std::string kScene =
+    std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_combination1.yaml";
 
 }  // namespace
 
@@ -77,14 +78,15 @@ TEST(CraneSimCli, InfoSaysWhatARunIntegrates) {
   {
     const crane_twin::InvariantReducedSimulation sim(
         crane_twin::buildCraneModel(crane_twin::loadScene(kScene, {})));
-    EXPECT_NE(r.out.find("integrated_rope_coordinates," +
-                         std::to_string(3 * sim.basis().shapes()) + "\n"),
+    EXPECT_NE(r.out.find("integrated_rope_coordinates," + std::to_string(3 * sim.basis().shapes()) +
+                         "\n"),
               std::string::npos)
         << r.out;
   }
   EXPECT_NE(r.out.find("rope_bending,on\n"), std::string::npos);
   EXPECT_NE(r.out.find("slewing_inertial_loads,off\n"), std::string::npos);
-  r = run("info " + kScene + " --set structure.model=rigid --set rope.model=full --set rope.bending=false"
+  r = run("info " + kScene +
+          " --set structure.model=rigid --set rope.model=full --set rope.bending=false"
           " --set rope.damping=0.01");
   ASSERT_EQ(r.status, 0) << r.out;
   EXPECT_NE(r.out.find("integrated_structure_coordinates,0\n"), std::string::npos) << r.out;
@@ -133,7 +135,8 @@ TEST(CraneSimCli, BadInputExitsWithTwoAndNamesTheKey) {
 }
 
 namespace {
-const std::string kRope = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/rope_pendulum_chrono.yaml";
+const std::string kRope =
+    std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/rope_pendulum_chrono.yaml";
 }
 
 TEST(CraneSimCli, NumericalFailureExitsWithOneAndSaysWhenAndWhy) {
@@ -142,10 +145,12 @@ TEST(CraneSimCli, NumericalFailureExitsWithOneAndSaysWhenAndWhy) {
   // (the tension-only rope's finer steps carry this one through). Exit 1, the time and the
   // reason on stderr, and the rows written before it finite.
   const std::string csv = ::testing::TempDir() + "crane_sim_failure.csv";
-  const Result r = run("run " + kRope + " --set rope.elements=10 --set duration=50"
+  const Result r = run("run " + kRope +
+                       " --set rope.elements=10 --set duration=50"
                        " --set rope.tension_only=false"
                        " --set initial.swing_deg=90 --set time_step=5 --set output_interval=5"
-                       " --set initial.payload_velocity=[0,300,300] --quiet --out " + csv);
+                       " --set initial.payload_velocity=[0,300,300] --quiet --out " +
+                       csv);
   EXPECT_EQ(r.status, 1) << r.out;
   EXPECT_NE(r.out.find("numerical failure: t = "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("Newton did not converge"), std::string::npos) << r.out;
@@ -180,7 +185,8 @@ TEST(CraneSimCli, RunWritesSpecColumnsAndSummary) {
   const auto l = lines(r.out);
   ASSERT_FALSE(l.empty());
   EXPECT_TRUE(l.back().rfind("summary: wall_s=", 0) == 0) << l.back();
-  for (const char* k : {" sim_s=0.1 ", " rtf=", " steps=100 ", " subdomains=0 ", " mode_updates_s="}) {
+  for (const char* k :
+       {" sim_s=0.1 ", " rtf=", " steps=100 ", " subdomains=0 ", " mode_updates_s="}) {
     EXPECT_NE(l.back().find(k), std::string::npos) << k;
   }
   std::ifstream in(csv);
@@ -211,15 +217,16 @@ TEST(CraneSimCli, StaticPrintsKeys) {
     const Result r = run("static " + kRope + " --set rope.model=" + model);
     ASSERT_EQ(r.status, 0) << r.out;
     EXPECT_EQ(r.out.rfind("payload_x,", 0), 0u) << r.out;
-    for (const char* k : {"payload_y,", "payload_z,", "rope_top_tension,", "jib_tip_dz,",
-                          "cab_dx,"}) {
+    for (const char* k :
+         {"payload_y,", "payload_z,", "rope_top_tension,", "jib_tip_dz,", "cab_dx,"}) {
       EXPECT_NE(r.out.find(std::string("\n") + k), std::string::npos) << k << "\n" << r.out;
     }
   }
 }
 
 TEST(CraneSimCli, UnbuiltCombinationsAreRefusedClearly) {
-  Result r = run("run " + kRope + " --set rope.model=reduced --set rope.reduction=subdomains"
+  Result r = run("run " + kRope +
+                 " --set rope.model=reduced --set rope.reduction=subdomains"
                  " --set rope.damping=0.01 --quiet");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.out.find("rope.damping"), std::string::npos) << r.out;
@@ -253,7 +260,8 @@ TEST(CraneSimCli, T8036RunsAtFullOrderWithStructureOutputs) {
   for (const char* model : {"modal", "full"}) {
     const Result r = run("run " + kScene + " --set rope.model=full --set structure.model=" + model +
                          " --set structure.modes=10 --set rope.elements=12 --set duration=0.2"
-                         " --set output_interval=0.01 --out " + csv + " --quiet");
+                         " --set output_interval=0.01 --out " +
+                         csv + " --quiet");
     ASSERT_EQ(r.status, 0) << r.out;
     std::string header;
     const std::vector<std::string> rows = csvRows(csv, header);
@@ -279,8 +287,10 @@ TEST(CraneSimCli, T8036StaticReportsStructureDeflection) {
 }
 
 TEST(CraneSimCli, ReducedRunCountsSubdomains) {
-  const Result r = run("run " + kRope + " --set rope.model=reduced --set rope.reduction=subdomains"
-                       " --set rope.mode_count=6 --set rope.elements=10 --set duration=2 --set initial.mode=equilibrium"
+  const Result r = run("run " + kRope +
+                       " --set rope.model=reduced --set rope.reduction=subdomains"
+                       " --set rope.mode_count=6 --set rope.elements=10 --set duration=2 --set "
+                       "initial.mode=equilibrium"
                        " --set rope.subdomain_delta=0.01 --quiet");
   ASSERT_EQ(r.status, 0) << r.out;
   const auto l = lines(r.out);
@@ -291,7 +301,10 @@ TEST(CraneSimCli, ReducedRunCountsSubdomains) {
 
 TEST(CraneSimCli, CompareComputesTheSpecMetrics) {
   const std::string a = ::testing::TempDir() + "cmp_a.csv", b = ::testing::TempDir() + "cmp_b.csv";
-  ASSERT_EQ(run("run " + kRope + " --set duration=0.1 --set rope.elements=6 --out " + a + " --quiet").status, 0);
+  ASSERT_EQ(
+      run("run " + kRope + " --set duration=0.1 --set rope.elements=6 --out " + a + " --quiet")
+          .status,
+      0);
   // B: A with the payload moved by (0.3, 0.4, 0) and the top tension raised by 250 N at the second
   // row: error 0.5 m, 0.5/60 relative, 250 N.
   {
@@ -329,7 +342,10 @@ TEST(CraneSimCli, CompareComputesTheSpecMetrics) {
 TEST(CraneSimCli, CompareRefusesMalformedCsv) {
   const std::string dir = ::testing::TempDir();
   const std::string good = dir + "cmp_good.csv";
-  ASSERT_EQ(run("run " + kRope + " --set duration=0.1 --set rope.elements=6 --out " + good + " --quiet").status, 0);
+  ASSERT_EQ(
+      run("run " + kRope + " --set duration=0.1 --set rope.elements=6 --out " + good + " --quiet")
+          .status,
+      0);
   struct Bad {
     const char* name;
     const char* text;
@@ -373,8 +389,10 @@ TEST(CraneSimCli, CompareRefusesMalformedCsv) {
 
 TEST(CraneSimCli, QuickSweepWritesOneRowPerSetting) {
   const std::string out = ::testing::TempDir() + "sweep.csv";
-  const Result r = run("sweep " + kRope + " --set duration=0.4 --set rope.elements=8"
-                       " --set initial.mode=equilibrium --quick --out " + out);
+  const Result r = run("sweep " + kRope +
+                       " --set duration=0.4 --set rope.elements=8"
+                       " --set initial.mode=equilibrium --quick --out " +
+                       out);
   ASSERT_EQ(r.status, 0) << r.out;
   std::ifstream in(out);
   std::string header, row;
@@ -396,12 +414,16 @@ TEST(CraneSimCli, PhysicalWarningsReachTheCsvAndStderr) {
   // 5 t at 80 m is over the chart's 3.6 t there: every row carries bit 2 and its ratio 5/3.6,
   // and stderr says so once, with a count at the end.
   const std::string csv = ::testing::TempDir() + "crane_sim_warn.csv";
-  const Result r = run("run " + kScene + " --set rope.model=full --set structure.model=rigid"
+  const Result r = run("run " + kScene +
+                       " --set rope.model=full --set structure.model=rigid"
                        " --set rope.elements=10 --set duration=0.1 --set payload.mass=5000"
-                       " --out " + csv + " --quiet");
+                       " --out " +
+                       csv + " --quiet");
   ASSERT_EQ(r.status, 0) << r.out;
-  EXPECT_NE(r.out.find("warning: t = 0.000 s: load outside the load chart"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("load outside the load chart at this radius in 11 output rows"), std::string::npos)
+  EXPECT_NE(r.out.find("warning: t = 0.000 s: load outside the load chart"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("load outside the load chart at this radius in 11 output rows"),
+            std::string::npos)
       << r.out;
   std::string header;
   const std::vector<std::string> rows = csvRows(csv, header);
@@ -413,16 +435,20 @@ TEST(CraneSimCli, PhysicalWarningsReachTheCsvAndStderr) {
   }
   EXPECT_EQ(rows.size(), 11u);
   // Within the chart: no warning.
-  const Result ok = run("run " + kScene + " --set rope.model=full --set structure.model=rigid"
+  const Result ok = run("run " + kScene +
+                        " --set rope.model=full --set structure.model=rigid"
                         " --set rope.elements=10 --set duration=0.1 --quiet");
   EXPECT_EQ(ok.out.find("warning:"), std::string::npos) << ok.out;
   EXPECT_NE(ok.out.find("warnings_seen=0 warning_rows=none"), std::string::npos) << ok.out;
   // The working load limit: the same run's tension ratio (about 0.10) over 1 / 12 of the
   // breaking force, not over 1 / 5.
-  const Result wll = run("run " + kScene + " --set rope.model=full --set structure.model=rigid"
-                         " --set rope.elements=10 --set duration=0.1 --quiet --set rope.safety_factor=12");
+  const Result wll =
+      run("run " + kScene +
+          " --set rope.model=full --set structure.model=rigid"
+          " --set rope.elements=10 --set duration=0.1 --quiet --set rope.safety_factor=12");
   EXPECT_NE(wll.out.find("warning: t = 0.000 s: rope tension over its working load limit"),
-            std::string::npos) << wll.out;
+            std::string::npos)
+      << wll.out;
   EXPECT_NE(wll.out.find("warnings_seen=32 warning_rows=32:11"), std::string::npos) << wll.out;
   EXPECT_EQ(run("run " + kScene + " --set rope.safety_factor=0.5 --quiet").status, 2);
 }
@@ -430,7 +456,8 @@ TEST(CraneSimCli, PhysicalWarningsReachTheCsvAndStderr) {
 TEST(CraneSimCli, SummaryCountsEnergyConsistentSteps) {
   // docs/cli.md: the summary's energy_consistent_steps and halved_steps. A taut rope takes none;
   // the shipped slack throw (its first 0.6 s: thrown up, slack, snatched) takes them.
-  const Result taut = run("run " + kScene + " --set rope.model=full --set structure.model=rigid"
+  const Result taut = run("run " + kScene +
+                          " --set rope.model=full --set structure.model=rigid"
                           " --set rope.elements=10 --set duration=0.1 --quiet");
   EXPECT_NE(taut.out.find(" energy_consistent_steps=0 halved_steps=0\n"), std::string::npos)
       << taut.out;

@@ -1,16 +1,17 @@
 // What the ROS node publishes, checked without ROS: the rope curve sampled from the ANCF shape
 // functions, the crane frames at their deformed positions, the deformed structure segments
 // (crane_snapshot), and the command checks and timeout (command_guard).
+#include "crane_twin/analysis/crane_snapshot.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
+#include "crane_twin/analysis/load_shapes.hpp"
 #include "crane_twin/drives/command_guard.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
-#include "crane_twin/analysis/crane_snapshot.hpp"
-#include "crane_twin/analysis/load_shapes.hpp"
-#include "crane_twin/simulation/reduced_crane_simulation.hpp"
+#include "crane_twin/simulation/subdomain_reduced_simulation.hpp"
 #include "crane_twin/structure/structure_support.hpp"
 
 using namespace crane_twin;
@@ -19,8 +20,8 @@ namespace {
 const std::string kScenes = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/";
 
 CraneModel t8036(std::vector<std::string> sets) {
-  sets.insert(sets.begin(), {"rope.model=full", "rope.elements=20", "time_step=0.01",
-                             "structure.modes=12"});
+  sets.insert(sets.begin(),
+              {"rope.model=full", "rope.elements=20", "time_step=0.01", "structure.modes=12"});
   return buildCraneModel(loadScene(kScenes + "t8036_combination1.yaml", sets));
 }
 }  // namespace
@@ -147,8 +148,8 @@ TEST(CraneSnapshot, RigidPartsSitOnTheDeformedStructure) {
   const double rigid_offset = (s.jib_tip.position - tip0).norm();
   EXPECT_GT(rigid_offset, 1.5);
   const Eigen::Vector3d rigid_tip = s.jib.orientation * tip0 + s.jib.position;
-  const double bending = std::abs(jibBendingTipDz(st, sim.support().structureDisplacement(
-                                                          sim.fullState().z)));
+  const double bending =
+      std::abs(jibBendingTipDz(st, sim.support().structureDisplacement(sim.fullState().z)));
   EXPECT_LT((rigid_tip - s.jib_tip.position).norm(), 0.5 * bending + 0.05);
   EXPECT_LT((rigid_tip - s.jib_tip.position).norm(), 0.25 * rigid_offset);
   // The mast frame is in the world frame; the deformed mast top node turned by the slewing.
@@ -162,7 +163,8 @@ TEST(CraneSnapshot, RigidPartsSitOnTheDeformedStructure) {
   EXPECT_GT((top_world - R * st.nodes[top]).norm(), 0.2);
   // A straight line fitted to the mast's bending line under the jib's end moment, w = d xi^2,
   // misses its end by d / 6: the rigid mast's top is within that (plus 2 %) of the node.
-  EXPECT_LT((top_rigid - top_world).norm(), (1.0 / 6.0 + 0.02) * (top_world - R * st.nodes[top]).norm());
+  EXPECT_LT((top_rigid - top_world).norm(),
+            (1.0 / 6.0 + 0.02) * (top_world - R * st.nodes[top]).norm());
   // Fits are small motions near identity: tilts of a few tenths of a degree.
   for (const FramePose* f : {&s.mast, &s.slewing_unit, &s.jib, &s.counter_jib})
     EXPECT_LT(f->orientation.angularDistance(Eigen::Quaterniond::Identity()), 0.05);
@@ -192,7 +194,7 @@ TEST(LoadShapes, SizedFromTheMassesAndHangingBelowTheRopesEnd) {
 }
 
 TEST(CraneSnapshot, ReducedModelSnapshotEqualsItsExpandedState) {
-  ReducedCraneSimulation sim(t8036({"rope.model=reduced", "rope.mode_count=6"}));
+  SubdomainReducedSimulation sim(t8036({"rope.model=reduced", "rope.mode_count=6"}));
   sim.initialize();
   for (int k = 0; k < 20; ++k) sim.step();
   const CraneSnapshot s = snapshotOf(sim);
@@ -201,8 +203,8 @@ TEST(CraneSnapshot, ReducedModelSnapshotEqualsItsExpandedState) {
 }
 
 TEST(CraneSnapshot, AnchoredRopeHasNoStructure) {
-  CraneSimulation sim(buildCraneModel(loadScene(kScenes + "rope_pendulum_chrono.yaml",
-                                                {"rope.elements=10", "time_step=0.01"})));
+  CraneSimulation sim(buildCraneModel(
+      loadScene(kScenes + "rope_pendulum_chrono.yaml", {"rope.elements=10", "time_step=0.01"})));
   sim.initialize();
   const CraneSnapshot s = snapshotOf(sim);
   EXPECT_FALSE(s.has_crane);

@@ -1,13 +1,14 @@
 // Discrete gradients of the rope's strain energies (docs/model.md "Energy-consistent step"):
 // the defining identity G . (x1 - x0) = U(x1) - U(x0) across slack/taut switches, the limit
 // G(x, x) = grad U(x), and the Newton matrix's stand-in against finite differences.
+#include "crane_twin/elements/discrete_gradient.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "crane_twin/elements/ancf_cable_element.hpp"
-#include "crane_twin/elements/discrete_gradient.hpp"
 #include "crane_twin/rope/pendulum_rope.hpp"
 
 using namespace crane_twin;
@@ -50,7 +51,7 @@ TEST(DiscreteGradient, ElementWorkEqualsTheEnergyChangeAcrossSlackTautSwitches) 
   for (bool tension_only : {true, false}) {
     const AncfCableProperties p = cable(tension_only);
     // Taut to slack, slack to taut, within the smoothing band, deep slack, and the guard.
-    const double strains[][2] = {{2e-3, -2e-3}, {-3e-3, 1e-3}, {4e-6, -6e-6},
+    const double strains[][2] = {{2e-3, -2e-3},  {-3e-3, 1e-3}, {4e-6, -6e-6},
                                  {-5e-2, -1e-2}, {-0.25, -0.1}, {1e-3, 1.5e-3}};
     for (const auto& st : strains) {
       for (int k = 0; k < 5; ++k) {

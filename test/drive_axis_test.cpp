@@ -1,8 +1,8 @@
 // Drives follow rate commands within their limits (docs/model.md): final positions equal
 // the closed form of the limited (trapezoidal) speed profile; position limits are never passed.
-#include <gtest/gtest.h>
-
 #include "crane_twin/drives/drive_axis.hpp"
+
+#include <gtest/gtest.h>
 
 using namespace crane_twin;
 

@@ -1,15 +1,16 @@
 // Full-order rope against closed form (docs/model.md): static stretch and tension, the
 // modes of a hanging chain and of a heavy rope with a tip mass (Bessel functions), energy
 // conservation, and the Project Chrono cross-code solution.
+#include "crane_twin/solvers/full_order_solver.hpp"
+
 #include <gtest/gtest.h>
 
 #include <boost/math/special_functions/bessel.hpp>
 #include <fstream>
 #include <sstream>
 
-#include "crane_twin/solvers/full_order_solver.hpp"
-#include "crane_twin/structure/modal_analysis.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/structure/modal_analysis.hpp"
 
 using namespace crane_twin;
 
@@ -59,7 +60,8 @@ TEST(AnchoredRope, SwingEquilibriumHoldsTheChordAngle) {
   Eigen::Vector3d H;
   const double th = 5.0 * M_PI / 180, az = 0.3;
   const CoupledState s = solver.solveSwingEquilibrium(th, az, &H);
-  const Eigen::Vector3d c = AncfRope::nodePosition(s.q, rope.nodes() - 1) - Eigen::Vector3d(1, 2, 3);
+  const Eigen::Vector3d c =
+      AncfRope::nodePosition(s.q, rope.nodes() - 1) - Eigen::Vector3d(1, 2, 3);
   EXPECT_NEAR(std::atan2(std::hypot(c.x(), c.y()), -c.z()), th, 1e-9);
   EXPECT_NEAR(std::atan2(c.y(), c.x()), az, 1e-9);
   // Force balance of the whole rope: support force (-lambda) + weight + holding force = 0.
@@ -117,9 +119,9 @@ TEST(AnchoredRope, EnergyConservedWithRhoInfOneAndNeverGrowsWithDissipation) {
   // Undamped small swing, 20 s: with rho_inf = 1 (trapezoidal-like) the energy stays within
   // 0.5 % of the swing energy; with rho_inf = 0.7 it never grows.
   for (double rho : {1.0, 0.7}) {
-    const CraneModel m = pendulumModel({"rope.elements=20", "time_step=0.01",
-                                        "initial.mode=equilibrium",
-                                        "integrator.rho_inf=" + std::to_string(rho)});
+    const CraneModel m =
+        pendulumModel({"rope.elements=20", "time_step=0.01", "initial.mode=equilibrium",
+                       "integrator.rho_inf=" + std::to_string(rho)});
     CraneSimulation sim(m);
     sim.initialize();
     const double E0 = sim.solver().energy(sim.state());
@@ -191,8 +193,9 @@ TEST(AnchoredRope, SwingPeriodFromIntegrationMatchesRopeMode) {
   // Small swing (0.5 deg) released from equilibrium: the period measured from the payload's
   // x zero crossings equals 2 pi / w1 of the linearised rope (itself checked against the
   // Bessel closed form above), here for a 30-element rope at 10 ms steps with rho_inf = 1.
-  const CraneModel m = pendulumModel({"rope.elements=30", "time_step=0.01", "initial.mode=equilibrium",
-                                      "initial.swing_deg=0.5", "integrator.rho_inf=1.0"});
+  const CraneModel m =
+      pendulumModel({"rope.elements=30", "time_step=0.01", "initial.mode=equilibrium",
+                     "initial.swing_deg=0.5", "integrator.rho_inf=1.0"});
   CraneSimulation sim(m);
   const double w1 = std::sqrt(sim.ropeModes(2).omega2(0));
   sim.initialize();
@@ -218,8 +221,9 @@ TEST(AnchoredRope, AxialDampingDampsTheBounceNotTheSwing) {
   // top tension's spread over 8 s..10 s, decays, the swing (payload x at its first turning
   // point, ~7.8 s) stays, and the energy never grows.
   auto run = [](double c, double* spread, double* x_min, bool* energy_ok) {
-    CraneSimulation sim(pendulumModel({"rope.elements=20", "time_step=0.002", "integrator.rho_inf=1",
-                                       "rope.damping=" + std::to_string(c)}));
+    CraneSimulation sim(
+        pendulumModel({"rope.elements=20", "time_step=0.002", "integrator.rho_inf=1",
+                       "rope.damping=" + std::to_string(c)}));
     sim.initialize();
     double Eprev = sim.solver().energy(sim.state()), lo = 1e300, hi = -1e300;
     *x_min = 1e300;
@@ -254,8 +258,10 @@ TEST(AncfRopeLength, InPlaceLengthChangeEqualsAFreshRope) {
   for (const double L : {42.0, 3.0, 75.5}) {
     hoisted.setLength(L);
     const AncfRope fresh(7, L, 3.8, 4.4e7, 157.0, 3600.0, Eigen::Vector3d(0, 0, -9.81), 850.0);
-    const Eigen::MatrixXd d = Eigen::MatrixXd(hoisted.massMatrix()) - Eigen::MatrixXd(fresh.massMatrix());
-    EXPECT_LT(d.cwiseAbs().maxCoeff(), 1e-10 * Eigen::MatrixXd(fresh.massMatrix()).cwiseAbs().maxCoeff())
+    const Eigen::MatrixXd d =
+        Eigen::MatrixXd(hoisted.massMatrix()) - Eigen::MatrixXd(fresh.massMatrix());
+    EXPECT_LT(d.cwiseAbs().maxCoeff(),
+              1e-10 * Eigen::MatrixXd(fresh.massMatrix()).cwiseAbs().maxCoeff())
         << "L = " << L;
     EXPECT_LT((hoisted.gravityForce() - fresh.gravityForce()).cwiseAbs().maxCoeff(),
               1e-10 * fresh.gravityForce().cwiseAbs().maxCoeff());

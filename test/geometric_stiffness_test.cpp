@@ -1,6 +1,8 @@
 // Geometric stiffness (docs/model.md "Geometric stiffness"): a cantilever column's buckling load
 // and its exact sway under a compressive load (closed forms), and the T8036's mast-head sway
 // amplified by 1 / (1 - 1 / lambda_cr) under its own weight.
+#include "crane_twin/structure/geometric_stiffness.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCholesky>
@@ -10,7 +12,6 @@
 #include "crane_twin/io/input_error.hpp"
 #include "crane_twin/io/scene.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
-#include "crane_twin/structure/geometric_stiffness.hpp"
 
 using namespace crane_twin;
 
@@ -77,23 +78,26 @@ TEST(GeometricStiffness, CompressedCantileverSwaysAsTheClosedForm) {
     f(6 * (c.n - 1)) = H;  // tip, along x
     const double delta = (K + KG).ldlt().solve(f)(6 * (c.n - 1));
     const double k = std::sqrt(P / EI);
-    const double exact = P > 0.0 ? H * (std::tan(k * c.L) - k * c.L) / (P * k)
-                                 : H * std::pow(c.L, 3) / (3.0 * EI);
+    const double exact =
+        P > 0.0 ? H * (std::tan(k * c.L) - k * c.L) / (P * k) : H * std::pow(c.L, 3) / (3.0 * EI);
     SCOPED_TRACE(ratio);
     EXPECT_NEAR(delta, exact, 1e-6 * exact);
   }
 }
 
 TEST(GeometricStiffness, MastHeadSwayOfTheT8036IsAmplifiedByItsCriticalLoadFactor) {
-  const std::string scene = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_combination1.yaml";
+  const std::string scene =
+      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_combination1.yaml";
   const CraneModel plain = buildCraneModel(loadScene(scene));
-  const CraneModel pdelta = buildCraneModel(loadScene(scene, {"structure.geometric_stiffness=true"}));
+  const CraneModel pdelta =
+      buildCraneModel(loadScene(scene, {"structure.geometric_stiffness=true"}));
   const TowerCraneStructure& s0 = *plain.structure;
   const TowerCraneStructure& s1 = *pdelta.structure;
   // The mast's compression: the largest axial force in a mast member.
   double compression = 0.0;
   for (std::size_t k = 0; k < s1.members.size(); ++k)
-    if (s1.members[k].group == "mast") compression = std::min(compression, pdelta.structure_axial_forces(k));
+    if (s1.members[k].group == "mast")
+      compression = std::min(compression, pdelta.structure_axial_forces(k));
   EXPECT_LT(compression, -1e5);
   // lambda_cr: the smallest positive load factor with (K + lambda K_G) singular, 1 / mu for the
   // largest positive eigenvalue mu of K^-1 (-K_G), K_G = (K + K_G) - K. Tension members give
@@ -127,9 +131,11 @@ TEST(GeometricStiffness, MastHeadSwayOfTheT8036IsAmplifiedByItsCriticalLoadFacto
   const double d1 = s1.nodeDisplacement(staticDisplacement(s1, f), s1.cab_node).y();
   const double lambda_s = u0.dot(s0.K * u0) / -u0.dot(KG * u0);
   const double amplification = d1 / d0, expected = 1.0 / (1.0 - 1.0 / lambda_s);
-  std::printf("T8036 with the 3.6 t at 80 m: lambda_cr %.2f, largest mast compression %.0f kN; "
-              "mast-head sway across the jib amplified %.4f, Rayleigh-Ritz 1 / (1 - 1 / %.2f) = "
-              "%.4f\n", lambda, -compression / 1e3, amplification, lambda_s, expected);
+  std::printf(
+      "T8036 with the 3.6 t at 80 m: lambda_cr %.2f, largest mast compression %.0f kN; "
+      "mast-head sway across the jib amplified %.4f, Rayleigh-Ritz 1 / (1 - 1 / %.2f) = "
+      "%.4f\n",
+      lambda, -compression / 1e3, amplification, lambda_s, expected);
   EXPECT_GT(lambda_s, lambda);
   EXPECT_GT(amplification, 1.0);
   EXPECT_LT(amplification, 1.0 / (1.0 - 1.0 / lambda));
@@ -137,7 +143,8 @@ TEST(GeometricStiffness, MastHeadSwayOfTheT8036IsAmplifiedByItsCriticalLoadFacto
 }
 
 TEST(GeometricStiffness, KeyIsCheckedAndOffByDefault) {
-  const std::string scene = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_combination1.yaml";
+  const std::string scene =
+      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_combination1.yaml";
   EXPECT_FALSE(loadScene(scene).structure_geometric_stiffness);
   EXPECT_THROW(loadScene(scene, {"structure.model=rigid", "structure.geometric_stiffness=true"}),
                InputError);

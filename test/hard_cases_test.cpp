@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "crane_twin/simulation/crane_simulation.hpp"
-#include "crane_twin/simulation/reduced_crane_simulation.hpp"
+#include "crane_twin/simulation/subdomain_reduced_simulation.hpp"
 
 using namespace crane_twin;
 
@@ -17,8 +17,8 @@ namespace {
 
 struct Case {
   const char* scene;
-  std::vector<std::string> sets;  ///< to keep the test short
-  bool energy_fed;                ///< drives work on the system: no energy bound
+  std::vector<std::string> sets;          ///< to keep the test short
+  bool energy_fed;                        ///< drives work on the system: no energy bound
   double peak_min = 0.0, peak_max = 0.0;  ///< > 0: bounds on max tension / hanging weight
 };
 
@@ -45,8 +45,8 @@ Outcome run(const Case& c) {
     if (k % 10 != 0 && k != steps) continue;
     v = sim->series();
     o.finite = o.finite && v.payload.allFinite() && v.payload_velocity.allFinite() &&
-               std::isfinite(v.energy) && std::isfinite(v.rope_top_tension) &&
-               v.cab.allFinite() && v.jib_tip.allFinite();
+               std::isfinite(v.energy) && std::isfinite(v.rope_top_tension) && v.cab.allFinite() &&
+               v.jib_tip.allFinite();
     o.max_constraint = std::max(o.max_constraint, v.constraint_error);
     o.e_max = std::max(o.e_max, v.energy);
     o.max_tension = std::max(o.max_tension, v.rope_top_tension);
@@ -85,17 +85,20 @@ TEST(HardCases, LargeSwing60Deg) {
 
 TEST(HardCases, LargeSwing30DegReduced) {
   check({"hard_swing_30deg.yaml",
-         {"duration=3", "rope.elements=40", "rope.model=reduced", "rope.mode_count=10"}, false});
+         {"duration=3", "rope.elements=40", "rope.model=reduced", "rope.mode_count=10"},
+         false});
 }
 
 TEST(HardCases, LargeSwing60DegReducedHandsTheSlackRopeToFullOrder) {
   // Released at 60 deg the rope goes almost slack after 0.19 s; the reduced model integrates
-  // that episode at full order (ReducedCraneSimulation) instead of blowing up (35 MN before).
+  // that episode at full order (SubdomainReducedSimulation) instead of blowing up (35 MN before).
   check({"hard_swing_60deg.yaml",
-         {"duration=1", "rope.elements=40", "rope.model=reduced", "rope.mode_count=10"}, false});
-  const std::string path = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/hard_swing_60deg.yaml";
-  ReducedCraneSimulation sim(buildCraneModel(loadScene(
-      path, {"rope.elements=40", "rope.model=reduced", "rope.mode_count=10"})));
+         {"duration=1", "rope.elements=40", "rope.model=reduced", "rope.mode_count=10"},
+         false});
+  const std::string path =
+      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/hard_swing_60deg.yaml";
+  SubdomainReducedSimulation sim(buildCraneModel(
+      loadScene(path, {"rope.elements=40", "rope.model=reduced", "rope.mode_count=10"})));
   sim.initialize();
   double max_tension = 0.0;
   for (int k = 0; k < 1000; ++k) {
@@ -116,26 +119,26 @@ TEST(HardCases, LargeSwing60DegReducedStaysBelowTheBreakingForce) {
   // the new basis carries the state's kinetic energy, which at this swing it never does: the
   // run stays at full order after the first slack episode (a reduced model that cannot
   // represent the motion says so and steps aside).
-  const std::string path = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/hard_swing_60deg.yaml";
-  const CraneModel model = buildCraneModel(loadScene(
-      path, {"rope.elements=40", "rope.model=reduced", "rope.mode_count=10"}));
-  ReducedCraneSimulation sim(model);
+  const std::string path =
+      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/hard_swing_60deg.yaml";
+  const CraneModel model = buildCraneModel(
+      loadScene(path, {"rope.elements=40", "rope.model=reduced", "rope.mode_count=10"}));
+  SubdomainReducedSimulation sim(model);
   sim.initialize();
   double max_tension = 0.0;
   for (int k = 0; k < 20000; ++k) {
     sim.step();
     max_tension = std::max(max_tension, sim.series().rope_top_tension);
   }
-  std::printf("60 deg, 40 elements, reduced: max top tension %.0f N, %d slack episodes, %ld "
-              "refused hand-backs, %ld full-order steps\n", max_tension, sim.slackEpisodes(),
-              sim.refusedHandBacks(), sim.fullOrderSteps());
+  std::printf(
+      "60 deg, 40 elements, reduced: max top tension %.0f N, %d slack episodes, %ld "
+      "refused hand-backs, %ld full-order steps\n",
+      max_tension, sim.slackEpisodes(), sim.refusedHandBacks(), sim.fullOrderSteps());
   EXPECT_GT(sim.refusedHandBacks(), 0);
   EXPECT_LT(max_tension, 0.5 * model.rope.breaking_force);
 }
 
-TEST(HardCases, SwingOnA2mRope) {
-  check({"hard_short_rope_2m.yaml", {"duration=5"}, false});
-}
+TEST(HardCases, SwingOnA2mRope) { check({"hard_short_rope_2m.yaml", {"duration=5"}, false}); }
 
 TEST(HardCases, SlackRopeSnapsTaut) {
   // Thrown up at 3 m/s the load rises ~0.46 m and falls back onto the rope: the snap at least
@@ -148,20 +151,25 @@ TEST(HardCases, StressFreeReleaseBouncesToTwiceTheStaticTension) {
   // twice the static tension (closed form for a light spring and a rigid support; the rope's
   // own 228 kg of 14.8 t bends it a little). On the soft T8036 the structure shares the
   // stretch and the peak is lower: bounded, not checked against 2.
-  check({"hard_stress_free_heavy.yaml", {"duration=1.0", "rope.elements=40", "structure.model=rigid"},
-         false, 1.9, 2.1});
+  check({"hard_stress_free_heavy.yaml",
+         {"duration=1.0", "rope.elements=40", "structure.model=rigid"},
+         false,
+         1.9,
+         2.1});
   check({"hard_stress_free_heavy.yaml", {"duration=1.0", "rope.elements=40"}, false, 1.2, 2.1});
 }
 
 TEST(HardCases, EmergencyStopOfSlewing) {
   check({"hard_emergency_stop_slew.yaml",
-         {"duration=6", "rope.elements=30", "commands=[{t: 0, slew_rate: 0.084}, {t: 4.2, slew_rate: 0}]"},
+         {"duration=6", "rope.elements=30",
+          "commands=[{t: 0, slew_rate: 0.084}, {t: 4.2, slew_rate: 0}]"},
          true});
 }
 
 TEST(HardCases, EmergencyStopOfTheTrolley) {
   check({"hard_emergency_stop_trolley.yaml",
-         {"duration=5", "rope.elements=30", "commands=[{t: 0, trolley_speed: -1}, {t: 3, trolley_speed: 0}]"},
+         {"duration=5", "rope.elements=30",
+          "commands=[{t: 0, trolley_speed: -1}, {t: 3, trolley_speed: 0}]"},
          true});
 }
 
@@ -169,7 +177,8 @@ TEST(HardCases, HoistingTo3mAndBack) {
   // The full 60 -> 3 -> 60 m profile on a coarse rope and step, at full and reduced order.
   check({"hard_hoist_60_3_60.yaml", {"rope.elements=20", "time_step=0.01"}, true});
   check({"hard_hoist_60_3_60.yaml",
-         {"rope.elements=20", "time_step=0.01", "rope.model=reduced", "rope.mode_count=10"}, true});
+         {"rope.elements=20", "time_step=0.01", "rope.model=reduced", "rope.mode_count=10"},
+         true});
 }
 
 TEST(HardCases, ReducedHoistingTo3mAndBackFollowsFullOrder) {
@@ -177,13 +186,14 @@ TEST(HardCases, ReducedHoistingTo3mAndBackFollowsFullOrder) {
   // hands steps that change the length fast against the rope's static stretch (here below
   // about 32 m at 10 mm per step) to full order. Before that hand-over, lowering from 3 m
   // failed numerically at 62.6 s on this mesh and step.
-  const std::string path = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/hard_hoist_60_3_60.yaml";
+  const std::string path =
+      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/hard_hoist_60_3_60.yaml";
   auto with = [&](std::vector<std::string> sets) {
     sets.insert(sets.end(), {"rope.elements=20", "time_step=0.01", "rope.mode_count=10"});
     return buildCraneModel(loadScene(path, sets));
   };
   CraneSimulation full(with({"rope.model=full"}));
-  ReducedCraneSimulation red(with({"rope.model=reduced"}));
+  SubdomainReducedSimulation red(with({"rope.model=reduced"}));
   full.initialize();
   red.initialize();
   double err = 0.0;
@@ -192,8 +202,10 @@ TEST(HardCases, ReducedHoistingTo3mAndBackFollowsFullOrder) {
     red.step();
     err = std::max(err, (full.series().payload - red.series().payload).norm());
   }
-  std::printf("60 -> 3 -> 60 m, reduced vs full: payload error %.3g m, %ld fast-hoist hand-overs, "
-              "%d slack episodes\n", err, red.fastHoistEpisodes(), red.slackEpisodes());
+  std::printf(
+      "60 -> 3 -> 60 m, reduced vs full: payload error %.3g m, %ld fast-hoist hand-overs, "
+      "%d slack episodes\n",
+      err, red.fastHoistEpisodes(), red.slackEpisodes());
   EXPECT_NEAR(red.crane().ropeLength(), 60.0, 1e-9);
   EXPECT_LT(err, 0.3);  // budget
   // Sentinel: measured 0.0104 m with 2 hand-overs (build/core/hard_cases_test
@@ -211,7 +223,8 @@ TEST(HardCases, LargeTimeStep) {
 }
 
 TEST(HardCases, RandomCommandsAreReproducible) {
-  const std::string path = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/hard_random_commands.yaml";
+  const std::string path =
+      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/hard_random_commands.yaml";
   const Scene a = loadScene(path), b = loadScene(path);
   ASSERT_EQ(a.commands.size(), 20u);  // every 3 s over 60 s
   for (size_t i = 0; i < a.commands.size(); ++i) {
@@ -224,7 +237,8 @@ TEST(HardCases, RandomCommandsAreReproducible) {
   EXPECT_NE(c.commands[0].slew_rate, a.commands[0].slew_rate);
   check({"hard_random_commands.yaml", {"duration=12", "rope.elements=30"}, true});
   check({"hard_random_commands.yaml",
-         {"duration=12", "rope.elements=30", "rope.model=reduced", "rope.mode_count=10"}, true});
+         {"duration=12", "rope.elements=30", "rope.model=reduced", "rope.mode_count=10"},
+         true});
 }
 
 TEST(HardCases, FallingRopeWithoutPayload) {

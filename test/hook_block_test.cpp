@@ -25,18 +25,16 @@ namespace {
 // Anchored at z = 0: 20 m of an almost massless, stiff hoist rope (1 fall, 1
 // g/m, EA 2.2e9 N, no bending), a 2 t hook block and 3.6 t on 5 m of rigging
 // (a bar of the same wire).
-constexpr double kL1 = 20.0, kL2 = 5.0, kHook = 2000.0, kLoad = 3600.0,
-                 kG = 9.81, kEA = 2.2e9;
+constexpr double kL1 = 20.0, kL2 = 5.0, kHook = 2000.0, kLoad = 3600.0, kG = 9.81, kEA = 2.2e9;
 
 std::string hookScene() {
   const std::string path = testing::TempDir() + "hook_block.yaml";
-  std::ofstream(path)
-      << "crane: none\nanchor: [0, 0, 0]\nduration: 60.0\ntime_step: 0.005\n"
-         "integrator: {rho_inf: 1.0}\n"
-         "rope: {model: full, elements: 20, length: 20.0, falls: 1, "
-         "mass_per_length: 0.001, axial_stiffness: 2.2e9, bending: false}\n"
-         "payload: {mass: 3600.0}\nhook: {mass: 2000.0, rigging_length: 5.0}\n"
-         "initial: {swing_deg: 2.0}\n";
+  std::ofstream(path) << "crane: none\nanchor: [0, 0, 0]\nduration: 60.0\ntime_step: 0.005\n"
+                         "integrator: {rho_inf: 1.0}\n"
+                         "rope: {model: full, elements: 20, length: 20.0, falls: 1, "
+                         "mass_per_length: 0.001, axial_stiffness: 2.2e9, bending: false}\n"
+                         "payload: {mass: 3600.0}\nhook: {mass: 2000.0, rigging_length: 5.0}\n"
+                         "initial: {swing_deg: 2.0}\n";
   return path;
 }
 
@@ -46,15 +44,13 @@ std::string hookScene() {
 //   g l1, m2 g l2),
 // K phi = w^2 M phi; lengths stretched by their static tensions.
 Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d> doublePendulum() {
-  const double l1 = kL1 * (1.0 + (kHook + kLoad) * kG / kEA),
-               l2 = kL2 * (1.0 + kLoad * kG / kEA);
+  const double l1 = kL1 * (1.0 + (kHook + kLoad) * kG / kEA), l2 = kL2 * (1.0 + kLoad * kG / kEA);
   Eigen::Matrix2d M, K;
-  M << (kHook + kLoad) * l1 * l1, kLoad * l1 * l2, kLoad * l1 * l2,
-      kLoad * l2 * l2;
+  M << (kHook + kLoad) * l1 * l1, kLoad * l1 * l2, kLoad * l1 * l2, kLoad * l2 * l2;
   K << (kHook + kLoad) * kG * l1, 0.0, 0.0, kLoad * kG * l2;
   return Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::Matrix2d>(K, M);
 }
-} // namespace
+}  // namespace
 
 TEST(HookBlock, DoublePendulumSwingsAtTheLinearisedClosedFormsFrequencies) {
   const auto dp = doublePendulum();
@@ -64,22 +60,20 @@ TEST(HookBlock, DoublePendulumSwingsAtTheLinearisedClosedFormsFrequencies) {
   // and the pendulum.
   for (const char *model : {"full", "reduced", "pendulum"}) {
     SCOPED_TRACE(model);
-    std::unique_ptr<Simulation> sim = makeSimulation(buildCraneModel(
-        loadScene(hookScene(), {std::string("rope.model=") + model})));
+    std::unique_ptr<Simulation> sim = makeSimulation(
+        buildCraneModel(loadScene(hookScene(), {std::string("rope.model=") + model})));
     sim->initialize();
     ASSERT_EQ(sim->hookNode(), std::string(model) == "pendulum" ? 1 : 20);
     ASSERT_EQ(sim->ropeNodes(), std::string(model) == "pendulum" ? 3 : 22);
     std::vector<double> t, eta1, eta2;
     for (int k = 0; k < 12000; ++k) {
       sim->step();
-      const Eigen::Vector3d top = sim->ropeNode(0),
-                            hook = sim->ropeNode(sim->hookNode()),
+      const Eigen::Vector3d top = sim->ropeNode(0), hook = sim->ropeNode(sim->hookNode()),
                             load = sim->ropeNode(sim->ropeNodes() - 1);
       // Angles in the swing plane (x), from the vertical; the modal coordinates
       // eta = Phi^-1 theta.
-      const Eigen::Vector2d theta(
-          std::atan2(hook.x() - top.x(), top.z() - hook.z()),
-          std::atan2(load.x() - hook.x(), hook.z() - load.z()));
+      const Eigen::Vector2d theta(std::atan2(hook.x() - top.x(), top.z() - hook.z()),
+                                  std::atan2(load.x() - hook.x(), hook.z() - load.z()));
       const Eigen::Vector2d eta = Phi_inv * theta;
       t.push_back(sim->time());
       eta1.push_back(eta(0));
@@ -88,27 +82,23 @@ TEST(HookBlock, DoublePendulumSwingsAtTheLinearisedClosedFormsFrequencies) {
     for (int i = 0; i < 2; ++i) {
       const auto c = upCrossings(t, i == 0 ? eta1 : eta2);
       ASSERT_GE(c.size(), 4u) << "mode " << i;
-      const double period = (c.back() - c.front()) / (c.size() - 1),
-                   closed = 2.0 * M_PI / w(i);
-      std::printf(
-          "%s mode %d: period %.5f s, linearised double pendulum %.5f s\n",
-          model, i + 1, period, closed);
+      const double period = (c.back() - c.front()) / (c.size() - 1), closed = 2.0 * M_PI / w(i);
+      std::printf("%s mode %d: period %.5f s, linearised double pendulum %.5f s\n", model, i + 1,
+                  period, closed);
       EXPECT_NEAR(period, closed, 1e-3 * closed) << "mode " << i;
     }
   }
   // Lumped (no rigging) would swing at the simple pendulum's 2 pi sqrt((l1 +
   // l2) / g) or sqrt(l1 / g): neither is a double-pendulum frequency, so the
   // test tells them apart.
-  EXPECT_GT(std::abs(2.0 * M_PI / w(0) - 2.0 * M_PI * std::sqrt(kL1 / kG)),
-            0.05);
+  EXPECT_GT(std::abs(2.0 * M_PI / w(0) - 2.0 * M_PI * std::sqrt(kL1 / kG)), 0.05);
 }
 
 TEST(HookBlock, HangsStraightWithEachMassOnItsPointAndItsOwnFrame) {
   for (const char *model : {"full", "pendulum"}) {
     SCOPED_TRACE(model);
     const CraneModel m = buildCraneModel(
-        loadScene(hookScene(),
-                  {"initial.swing_deg=0", std::string("rope.model=") + model}));
+        loadScene(hookScene(), {"initial.swing_deg=0", std::string("rope.model=") + model}));
     EXPECT_DOUBLE_EQ(m.end_mass, kLoad);
     EXPECT_DOUBLE_EQ(m.hook_mass, kHook);
     std::unique_ptr<Simulation> sim = makeSimulation(m);
@@ -122,8 +112,7 @@ TEST(HookBlock, HangsStraightWithEachMassOnItsPointAndItsOwnFrame) {
     EXPECT_NEAR(sim->ropeNode(sim->hookNode()).z(), z_hook, 1e-6);
     EXPECT_NEAR(v.payload.z(), z_hook - kL2 * (1.0 + kLoad * kG / kEA), 1e-6);
     const CraneSnapshot s = snapshotOf(*sim, SnapshotOptions{});
-    EXPECT_NEAR((s.hook.position - sim->ropeNode(sim->hookNode())).norm(), 0.0,
-                1e-12);
+    EXPECT_NEAR((s.hook.position - sim->ropeNode(sim->hookNode())).norm(), 0.0, 1e-12);
     EXPECT_NEAR((s.payload.position - v.payload).norm(), 0.0, 1e-12);
     EXPECT_NEAR((s.hook.position - s.payload.position).norm(), kL2, 1e-3);
     // At rest: a step does not move it.
@@ -133,20 +122,17 @@ TEST(HookBlock, HangsStraightWithEachMassOnItsPointAndItsOwnFrame) {
 }
 
 TEST(HookBlock, WithoutRiggingHookAndPayloadAreOneEndMassAndBadKeysAreRefused) {
-  const std::string t8036 = std::string(CRANE_TWIN_SOURCE_DIR) +
-                            "/config/scenes/t8036_combination1.yaml";
+  const std::string t8036 =
+      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_combination1.yaml";
   const CraneModel lumped = buildCraneModel(loadScene(t8036));
-  EXPECT_DOUBLE_EQ(lumped.end_mass, lumped.scene.payload_mass +
-                                        lumped.scene.crane->hook_block_mass);
+  EXPECT_DOUBLE_EQ(lumped.end_mass,
+                   lumped.scene.payload_mass + lumped.scene.crane->hook_block_mass);
   EXPECT_DOUBLE_EQ(lumped.hook_mass, 0.0);
-  const CraneModel heavier =
-      buildCraneModel(loadScene(t8036, {"hook.mass=3000"}));
+  const CraneModel heavier = buildCraneModel(loadScene(t8036, {"hook.mass=3000"}));
   EXPECT_DOUBLE_EQ(heavier.end_mass, heavier.scene.payload_mass + 3000.0);
   EXPECT_THROW(loadScene(t8036, {"hook.rigging_length=-1"}), InputError);
-  EXPECT_THROW(loadScene(t8036, {"hook.mass=0", "hook.rigging_length=4"}),
-               InputError);
-  EXPECT_THROW(loadScene(t8036, {"payload.mass=0", "hook.rigging_length=4"}),
-               InputError);
+  EXPECT_THROW(loadScene(t8036, {"hook.mass=0", "hook.rigging_length=4"}), InputError);
+  EXPECT_THROW(loadScene(t8036, {"payload.mass=0", "hook.rigging_length=4"}), InputError);
   EXPECT_THROW(loadScene(t8036, {"hook.sling=4"}), InputError);
 }
 
@@ -159,11 +145,10 @@ TEST(HookBlock, TwinSwayCorrectionTurnsTheWholeChainRigidly) {
   const Eigen::Vector3d dp(0.3, -0.2, 0.0), dv(-0.05, 0.08, 0.0);
   for (const char *model : {"full", "pendulum"}) {
     SCOPED_TRACE(model);
-    std::unique_ptr<Simulation> sim = makeSimulation(buildCraneModel(
-        loadScene(hookScene(), {std::string("rope.model=") + model})));
+    std::unique_ptr<Simulation> sim = makeSimulation(
+        buildCraneModel(loadScene(hookScene(), {std::string("rope.model=") + model})));
     sim->initialize();
-    for (int k = 0; k < 50; ++k)
-      sim->step();
+    for (int k = 0; k < 50; ++k) sim->step();
     const CoupledState before = sim->fullState();
     const std::vector<bool> blocks = sim->fullStatePositionBlocks();
     ASSERT_EQ(3 * static_cast<int>(blocks.size()), before.q.size());
@@ -180,8 +165,8 @@ TEST(HookBlock, TwinSwayCorrectionTurnsTheWholeChainRigidly) {
                 (before.q.segment<3>(hook) - before.q.segment<3>(end)).norm(), 1e-9);
     for (std::size_t b = 0; b < blocks.size(); ++b) {
       if (blocks[b]) {
-        EXPECT_NEAR((f.q.segment<3>(3 * b) - top).norm(),
-                    (before.q.segment<3>(3 * b) - top).norm(), 1e-9);
+        EXPECT_NEAR((f.q.segment<3>(3 * b) - top).norm(), (before.q.segment<3>(3 * b) - top).norm(),
+                    1e-9);
       }
     }
     if (std::string(model) == "full") {

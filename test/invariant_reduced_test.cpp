@@ -74,7 +74,8 @@ void errors(const RunRecord& a, const RunRecord& b, double& payload, double& rop
   for (std::size_t i = 0; i < a.payload.size(); ++i) {
     payload = std::max(payload, (a.payload[i] - b.payload[i]).norm());
     double s = 0.0;
-    for (std::size_t j = 0; j < a.nodes[i].size(); ++j) s += (a.nodes[i][j] - b.nodes[i][j]).squaredNorm();
+    for (std::size_t j = 0; j < a.nodes[i].size(); ++j)
+      s += (a.nodes[i][j] - b.nodes[i][j]).squaredNorm();
     rope = std::max(rope, std::sqrt(s / a.nodes[i].size()));
   }
 }
@@ -99,8 +100,9 @@ TEST(InvariantBasis, CarriesStraightRopesAndRigidRotationsExactly) {
   r.sim.initialize();
   const InvariantReducedSolver& s = r.sim.solver();
   // A straight unstretched rope in any direction from any top point: in the span (psi_0, xi).
-  for (const Eigen::Vector3d& d : {Eigen::Vector3d(0, 0, -1), Eigen::Vector3d(1, 2, -0.5).normalized(),
-                                  Eigen::Vector3d(0, 1, 0)}) {
+  for (const Eigen::Vector3d& d :
+       {Eigen::Vector3d(0, 0, -1), Eigen::Vector3d(1, 2, -0.5).normalized(),
+        Eigen::Vector3d(0, 1, 0)}) {
     EXPECT_LT(s.projectionError(r.rope().straight(Eigen::Vector3d(3, -2, 7), d)), 1e-10);
   }
   // Any rotation of an expanded state is the expansion of the rotated coordinates.
@@ -126,7 +128,8 @@ TEST(InvariantBasis, ForceAndMassAreTheGalerkinProjectionOfTheFullModel) {
   r.rope().elasticForce(b.expand(y, L), Qfull);
   const Eigen::VectorXd projected = b.projectForce(Qfull, L);
   const Eigen::VectorXd Qr = s.force(y, Eigen::VectorXd());
-  EXPECT_LT((Qr - projected).norm(), 1e-9 * projected.norm()) << Qr.transpose() << "\n" << projected.transpose();
+  EXPECT_LT((Qr - projected).norm(), 1e-9 * projected.norm()) << Qr.transpose() << "\n"
+                                                              << projected.transpose();
   // M_r x = B^T M B x.
   const Eigen::VectorXd x = deformed(r.sim, 3);
   const Eigen::VectorXd Mx = b.projectForce(r.rope().massMatrix() * b.expand(x, L), L);
@@ -136,7 +139,8 @@ TEST(InvariantBasis, ForceAndMassAreTheGalerkinProjectionOfTheFullModel) {
   EXPECT_LT((s.gravityForce() - Fg).norm(), 1e-10 * Fg.norm());
   // Rotation: Q_r((I x R) y) = (I x R) Q_r(y), energy unchanged.
   const Eigen::Matrix3d R = rotation(0.7, Eigen::Vector3d(1, 1, 0));
-  EXPECT_LT((s.force(rotateBlocks(R, y), Eigen::VectorXd()) - rotateBlocks(R, Qr)).norm(), 1e-9 * Qr.norm());
+  EXPECT_LT((s.force(rotateBlocks(R, y), Eigen::VectorXd()) - rotateBlocks(R, Qr)).norm(),
+            1e-9 * Qr.norm());
   EXPECT_NEAR(s.elasticEnergy(rotateBlocks(R, y)), s.elasticEnergy(y), 1e-9 * s.elasticEnergy(y));
 }
 
@@ -173,11 +177,11 @@ TEST(InvariantReduced, RopeSwingAgreesWithFullOrderWithinOneCentimetre) {
   // A 30 m rope with 500 kg released from its held equilibrium at 25 deg, 4 s, 40 elements.
   double payload, rope;
   long hand_overs;
-  reducedAgainstFull("rope_pendulum_chrono.yaml",
-                     {"rope.elements=40", "rope.length=30", "payload.mass=500",
-                      "initial.mode=equilibrium", "initial.swing_deg=25",
-                      "initial.swing_azimuth_deg=30"},
-                     4000, 20, payload, rope, hand_overs);
+  reducedAgainstFull(
+      "rope_pendulum_chrono.yaml",
+      {"rope.elements=40", "rope.length=30", "payload.mass=500", "initial.mode=equilibrium",
+       "initial.swing_deg=25", "initial.swing_azimuth_deg=30"},
+      4000, 20, payload, rope, hand_overs);
   std::printf("rope swing: payload %.3g m, rope RMS %.3g m, hand-overs %ld\n", payload, rope,
               hand_overs);
   EXPECT_LT(payload, 0.01);
@@ -190,11 +194,11 @@ TEST(InvariantReduced, SlewingAndTrolleyTravelAgreeWithFullOrderWithinOneCentime
   // moving out, 4 s from rest, then both stop; 6 s.
   double payload, rope;
   long hand_overs;
-  reducedAgainstFull(
-      "t8036_combination1.yaml",
-      {"rope.elements=40", "structure.modes=20", "time_step=0.002",
-       "commands=[{t: 0, slew_rate: 0.05, trolley_speed: -0.5}, {t: 4, slew_rate: 0, trolley_speed: 0}]"},
-      3000, 25, payload, rope, hand_overs);
+  reducedAgainstFull("t8036_combination1.yaml",
+                     {"rope.elements=40", "structure.modes=20", "time_step=0.002",
+                      "commands=[{t: 0, slew_rate: 0.05, trolley_speed: -0.5}, {t: 4, slew_rate: "
+                      "0, trolley_speed: 0}]"},
+                     3000, 25, payload, rope, hand_overs);
   std::printf("slew + trolley: payload %.3g m, rope RMS %.3g m\n", payload, rope);
   EXPECT_LT(payload, 0.01);
   EXPECT_LT(rope, 0.01);
@@ -281,9 +285,12 @@ TEST(InvariantReduced, FailureClassesOfTheSubdomainModelRunThroughWithinOneCenti
     int steps;
   };
   const std::vector<Case> cases = {
-      {"hard_short_rope_2m.yaml", {"payload.mass=12500", "initial.swing_deg=40", "structure.modes=20"}, 1000},
+      {"hard_short_rope_2m.yaml",
+       {"payload.mass=12500", "initial.swing_deg=40", "structure.modes=20"},
+       1000},
       {"t8036_combination2.yaml",
-       {"rope.elements=40", "structure.modes=20", "initial.payload_velocity=[0, 0, 3]"}, 1000},
+       {"rope.elements=40", "structure.modes=20", "initial.payload_velocity=[0, 0, 3]"},
+       1000},
       {"rope_pendulum_chrono.yaml", {"rope.elements=40", "initial.swing_deg=60"}, 1500}};
   for (const Case& c : cases) {
     double payload, rope;
@@ -303,11 +310,11 @@ TEST(InvariantReduced, LightPayloadSwingStaysReducedWithinOneCentimetre) {
   // energy (about 1 kJ) too, or the run never leaves full order.
   double payload, rope;
   long hand_overs;
-  reducedAgainstFull("rope_pendulum_chrono.yaml",
-                     {"rope.elements=40", "rope.length=20", "payload.mass=200",
-                      "initial.mode=equilibrium", "initial.swing_deg=15",
-                      "initial.swing_azimuth_deg=45"},
-                     3000, 20, payload, rope, hand_overs);
+  reducedAgainstFull(
+      "rope_pendulum_chrono.yaml",
+      {"rope.elements=40", "rope.length=20", "payload.mass=200", "initial.mode=equilibrium",
+       "initial.swing_deg=15", "initial.swing_azimuth_deg=45"},
+      3000, 20, payload, rope, hand_overs);
   std::printf("light payload swing: payload %.3g m, rope RMS %.3g m, hand-overs %ld\n", payload,
               rope, hand_overs);
   EXPECT_LT(payload, 0.01);
@@ -320,9 +327,8 @@ TEST(InvariantReduced, OutputRowFromTheReducedStateMatchesTheExpandedRope) {
   // the reduced model's energy) and the full rope is not kept at length: the row must be the one
   // the full model gives for the expanded state at the hoisted length.
   InvariantReducedSimulation sim(model(
-      "t8036_combination1.yaml",
-      {"rope.elements=30", "structure.model=rigid", "time_step=0.002", "rope.model=reduced",
-       "commands=[{t: 0, hoist_speed: -1.0}]"}));
+      "t8036_combination1.yaml", {"rope.elements=30", "structure.model=rigid", "time_step=0.002",
+                                  "rope.model=reduced", "commands=[{t: 0, hoist_speed: -1.0}]"}));
   sim.initialize();
   for (int k = 0; k < 1500; ++k) sim.step();  // 3 s: about 2 m of rope hoisted
   ASSERT_FALSE(sim.integratingFullOrder());
@@ -334,7 +340,8 @@ TEST(InvariantReduced, OutputRowFromTheReducedStateMatchesTheExpandedRope) {
                              {"rope.elements=30", "structure.model=rigid", "time_step=0.002",
                               "rope.model=full", "commands=[{t: 0, hoist_speed: -1.0}]"}));
   full.initialize();
-  for (int k = 0; k < 1500; ++k) full.advanceDrives(0.002 * k, 0.002, full.fullState().z);  // the same drive steps
+  for (int k = 0; k < 1500; ++k)
+    full.advanceDrives(0.002 * k, 0.002, full.fullState().z);  // the same drive steps
   ASSERT_NEAR(full.drives().hoistLength(), r.rope_length, 1e-9);
   full.followHoistLength();
   const SeriesValues f = full.seriesOf(sim.fullState());

@@ -1,8 +1,9 @@
 // ARPACK shift-invert modes against Eigen's dense generalised solver on a small 3D frame, and
 // the residual / mass-orthonormality checks of docs/model.md.
+#include "crane_twin/structure/modal_analysis.hpp"
+
 #include <gtest/gtest.h>
 
-#include "crane_twin/structure/modal_analysis.hpp"
 #include "crane_twin/elements/timoshenko_beam_element.hpp"
 
 using namespace crane_twin;
@@ -36,8 +37,8 @@ void portalFrame(SparseMatrix& K, SparseMatrix& M) {
   SparseAssembler KA(n), MA(n);
   for (auto [i, j] : members) {
     const Eigen::Vector3d ax = (nodes[j] - nodes[i]).normalized();
-    const Eigen::Vector3d orient = std::abs(ax.z()) > 0.9 ? Eigen::Vector3d::UnitX()
-                                                          : Eigen::Vector3d::UnitZ();
+    const Eigen::Vector3d orient =
+        std::abs(ax.z()) > 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitZ();
     const auto m = timoshenkoBeamGlobal(s, nodes[i], nodes[j], orient);
     std::vector<int> eq(12);
     for (int d = 0; d < 6; ++d) {
@@ -61,7 +62,7 @@ TEST(ModalAnalysis, MatchesDenseSolverOnSmallFrame) {
   opt.count = 12;
   const ModalBasis b = lowestModes(K, M, opt);
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> dense{Eigen::MatrixXd(K),
-                                                                   Eigen::MatrixXd(M)};
+                                                                  Eigen::MatrixXd(M)};
   for (int i = 0; i < opt.count; ++i) {
     EXPECT_NEAR(b.omega2(i), dense.eigenvalues()(i), 1e-8 * dense.eigenvalues()(i)) << i;
   }

@@ -7,14 +7,13 @@
 #include <cmath>
 #include <vector>
 
-#include "period_estimate.hpp"
-
-#include "crane_twin/io/config_reader.hpp"
-#include "crane_twin/drives/crane_drives.hpp"
-#include "crane_twin/simulation/crane_simulation.hpp"
 #include "crane_twin/analysis/crane_snapshot.hpp"
-#include "crane_twin/simulation/pendulum_crane_simulation.hpp"
 #include "crane_twin/analysis/trajectory_compare.hpp"
+#include "crane_twin/drives/crane_drives.hpp"
+#include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/simulation/pendulum_crane_simulation.hpp"
+#include "period_estimate.hpp"
 
 using namespace crane_twin;
 using crane_twin_test::upCrossings;
@@ -99,7 +98,7 @@ TEST(PendulumRope, DampingForceIsLinearInVelocityAndDissipates) {
   Matrix6 C;
   rope.dampingForce(0.01, q, v, Qd, &C);
   EXPECT_LT((C * v - Qd).norm(), 1e-9 * Qd.norm());  // Q_d = C v exactly
-  EXPECT_GT(v.dot(Qd), 0.0);                          // power taken out
+  EXPECT_GT(v.dot(Qd), 0.0);                         // power taken out
   // A rigid translation stretches nothing: no damping force.
   Vector6 rigid;
   rigid << 1, 2, 3, 1, 2, 3;
@@ -116,10 +115,12 @@ TEST(PendulumRope, MassIsTheRopesAndTheEnds) {
     ones << 1, 0, 0, 1, 0, 0;
     EXPECT_NEAR(ones.dot(rope.massMatrix() * ones), 3.8 * L + 250.0 + 3600.0, 1e-9);
     // Total weight.
-    EXPECT_NEAR(-(rope.gravityForce()(2) + rope.gravityForce()(5)), (3.8 * L + 3850.0) * 9.81, 1e-6);
+    EXPECT_NEAR(-(rope.gravityForce()(2) + rope.gravityForce()(5)), (3.8 * L + 3850.0) * 9.81,
+                1e-6);
   }
   EXPECT_THROW(rope.setLength(0.0), std::invalid_argument);
-  EXPECT_THROW(PendulumRope(60.0, 1.0, -1.0, 1.0, Eigen::Vector3d(0, 0, -9.81)), std::invalid_argument);
+  EXPECT_THROW(PendulumRope(60.0, 1.0, -1.0, 1.0, Eigen::Vector3d(0, 0, -9.81)),
+               std::invalid_argument);
 }
 
 TEST(PendulumRope, StaticTensionIsTheHangingWeight) {
@@ -139,8 +140,7 @@ TEST(PendulumRope, SwingPeriodIsTheStraightBarsClosedForm) {
   // Rigid swing of a uniform bar with an end mass about its top:
   // w^2 = g (m_end + mu L / 2) / ((m_end + mu L / 3) l). Undamped scheme (rho_inf 1).
   PendulumCraneSimulation sim(anchored({"initial.mode=equilibrium", "initial.swing_deg=1",
-                                        "integrator.rho_inf=1",
-                                        "time_step=0.005", "duration=60"}));
+                                        "integrator.rho_inf=1", "time_step=0.005", "duration=60"}));
   sim.initialize();
   const double l = (sim.state().q.tail<3>() - sim.state().q.head<3>()).norm();
   const double mu = 1.9 * 60.0, m = 3600.0;
@@ -184,9 +184,9 @@ TEST(PendulumRope, BouncePeriodIsTheSpringsClosedForm) {
 
 TEST(PendulumRope, EnergyIsConstantUndampedAndFallsWithDamping) {
   for (double c : {0.0, 0.01}) {
-    PendulumCraneSimulation sim(anchored({"initial.swing_deg=10", "integrator.rho_inf=1",
-                                          "time_step=0.002", "rope.damping=" + std::to_string(c),
-                                          "initial.payload_velocity=[0,0.5,0.2]"}));
+    PendulumCraneSimulation sim(
+        anchored({"initial.swing_deg=10", "integrator.rho_inf=1", "time_step=0.002",
+                  "rope.damping=" + std::to_string(c), "initial.payload_velocity=[0,0.5,0.2]"}));
     sim.initialize();
     const double e0 = sim.series().energy;
     double last = e0, drift = 0.0, above = 0.0;
@@ -225,13 +225,14 @@ TEST(PendulumRope, SlackThrowStaysFiniteAndSnapsTaut) {
   }
   EXPECT_GT(slackSteps, 100);  // it did go slack
   const double W = (sim.rope().endMass() + sim.rope().massPerLength() * 60.0) * 9.81;
-  EXPECT_GT(peak, 1.5 * W);    // and snapped taut
+  EXPECT_GT(peak, 1.5 * W);  // and snapped taut
   std::printf("slack steps %.0f, peak tension %.1f kN (%.2f of the weight), halved steps %ld\n",
               slackSteps, peak / 1e3, peak / W, sim.halvedSteps());
 }
 
 TEST(PendulumRope, HoistingConservesRopeMassAndTension) {
-  // 60 m -> 20 m at 1 m/s (ramps of 2 s at 0.5 m/s^2: 1 + 38 + 1 m), then at rest: top tension (m_end + mu L_new) g within 0.5 %.
+  // 60 m -> 20 m at 1 m/s (ramps of 2 s at 0.5 m/s^2: 1 + 38 + 1 m), then at rest: top tension
+  // (m_end + mu L_new) g within 0.5 %.
   const CraneModel m = buildCraneModel(loadScene(
       kDir + "t8036_combination1.yaml",
       {"rope.model=pendulum", "structure.model=rigid", "initial.swing_deg=0", "time_step=0.01",

@@ -10,7 +10,8 @@ namespace crane_twin_test {
 inline std::vector<double> upCrossings(const std::vector<double>& t, const std::vector<double>& x) {
   std::vector<double> c;
   for (std::size_t k = 1; k < x.size(); ++k)
-    if (x[k - 1] < 0.0 && x[k] >= 0.0) c.push_back(t[k - 1] + (t[k] - t[k - 1]) * -x[k - 1] / (x[k] - x[k - 1]));
+    if (x[k - 1] < 0.0 && x[k] >= 0.0)
+      c.push_back(t[k - 1] + (t[k] - t[k - 1]) * -x[k - 1] / (x[k] - x[k - 1]));
   return c;
 }
 

@@ -63,12 +63,13 @@ TEST(Reeving, StaticStretchAndBouncePeriodAreTheSpringChainsInEveryRopeModel) {
   const double m_rope = kFalls * kMu * kL;
   // Rayleigh: uniform strain along the falls, (m + m_rope / 3) on the chain's stiffness.
   const double period = 2.0 * M_PI * std::sqrt((kMass + m_rope / 3.0) / k);
-  const double period_without = 2.0 * M_PI * std::sqrt((kMass + m_rope / 3.0) / chainStiffness(0.0));
+  const double period_without =
+      2.0 * M_PI * std::sqrt((kMass + m_rope / 3.0) / chainStiffness(0.0));
   ASSERT_GT(period / period_without, 1.5);  // the line matters: the test can tell
   for (const char* model : {"full", "pendulum", "reduced"}) {
     SCOPED_TRACE(model);
-    const CraneModel cm = buildCraneModel(loadScene(
-        chainScene(), {std::string("rope.model=") + model, "rope.reeving_length=200"}));
+    const CraneModel cm = buildCraneModel(
+        loadScene(chainScene(), {std::string("rope.model=") + model, "rope.reeving_length=200"}));
     EXPECT_DOUBLE_EQ(cm.rope.axialStiffnessAt(kL), kFalls * kEA * kL / (kL + reeving / kFalls));
     std::unique_ptr<Simulation> sim = makeSimulation(cm);
     sim->initialize();
@@ -77,9 +78,9 @@ TEST(Reeving, StaticStretchAndBouncePeriodAreTheSpringChainsInEveryRopeModel) {
     const double z0 = -kL - (kMass + m_rope / 2.0) * kG / k;
     EXPECT_NEAR(sim->series().payload.z(), z0, 1e-7);
     // A vertical kick: the bounce on the chain.
-    std::unique_ptr<Simulation> kicked = makeSimulation(buildCraneModel(loadScene(
-        chainScene(), {std::string("rope.model=") + model, "rope.reeving_length=200",
-                       "initial.payload_velocity=[0,0,0.05]"})));
+    std::unique_ptr<Simulation> kicked = makeSimulation(buildCraneModel(
+        loadScene(chainScene(), {std::string("rope.model=") + model, "rope.reeving_length=200",
+                                 "initial.payload_velocity=[0,0,0.05]"})));
     kicked->initialize();
     std::vector<double> t, x;
     for (int i = 0; i < 10000; ++i) {
@@ -100,10 +101,12 @@ TEST(Reeving, StaticStretchAndBouncePeriodAreTheSpringChainsInEveryRopeModel) {
 }
 
 TEST(Reeving, TheLinesMassIsCarriedAtTheTrolleyAndBadValuesAreRefused) {
-  const std::string t8036 = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_combination1.yaml";
+  const std::string t8036 =
+      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_combination1.yaml";
   const CraneModel without = buildCraneModel(loadScene(t8036));
   const CraneModel with = buildCraneModel(loadScene(t8036, {"rope.reeving_length=300"}));
-  EXPECT_NEAR(with.trolleyMass() - without.trolleyMass(), with.scene.rope.mass_per_length * 300.0, 1e-9);
+  EXPECT_NEAR(with.trolleyMass() - without.trolleyMass(), with.scene.rope.mass_per_length * 300.0,
+              1e-9);
   EXPECT_DOUBLE_EQ(with.ropeMass(), without.ropeMass());  // the hanging mass is unchanged
   EXPECT_THROW(loadScene(t8036, {"rope.reeving_length=-5"}), InputError);
   EXPECT_THROW(loadScene(t8036, {"rope.reeving_length=abc"}), InputError);

@@ -1,11 +1,12 @@
 // Rope mode sets for the reduced model (docs/model.md): cold modes against the dense
 // solver and warm (subspace-iteration) updates against a fresh solve.
+#include "crane_twin/rope/rope_modes.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cstdio>
 
 #include "crane_twin/simulation/crane_simulation.hpp"
-#include "crane_twin/rope/rope_modes.hpp"
 
 using namespace crane_twin;
 
@@ -46,9 +47,9 @@ TEST(RopeModes, ColdModesAreMassOrthonormalWithSmallResiduals) {
 
 TEST(RopeModes, WarmUpdateAgreesWithAFreshSolve) {
   // Basis at the equilibrium held 2.3 deg out, tangent of the one held at 2.4 deg: the payload
-  // moves 0.1 m, twice the default subdomain delta. A warm update with the default two sweeps reproduces the
-  // fresh modes' frequencies and passes the residual and orthonormality checks (one sweep
-  // leaves a residual of 1.8e-3 on the highest kept mode, three 1.3e-8).
+  // moves 0.1 m, twice the default subdomain delta. A warm update with the default two sweeps
+  // reproduces the fresh modes' frequencies and passes the residual and orthonormality checks (one
+  // sweep leaves a residual of 1.8e-3 on the highest kept mode, three 1.3e-8).
   CraneSimulation sim(pendulum({"rope.elements=30", "initial.swing_deg=2.3"}));
   const Eigen::VectorXd q0 = sim.staticState().q;
   CraneSimulation swung(pendulum({"rope.elements=30", "initial.swing_deg=2.4"}));
@@ -62,9 +63,7 @@ TEST(RopeModes, WarmUpdateAgreesWithAFreshSolve) {
     EXPECT_NEAR(warm.omega2(i), fresh.omega2(i), 1e-6 * (std::abs(fresh.omega2(i)) + 1.0)) << i;
   }
   std::printf("warm update (%d sweeps): residual %.3g (start block %.3g)\n", s.sweeps,
-              ropeModeResidual(b.K, b.M, warm),
-              ropeModeResidual(b.K, b.M, start));
+              ropeModeResidual(b.K, b.M, warm), ropeModeResidual(b.K, b.M, start));
   EXPECT_LT(ropeModeResidual(b.K, b.M, warm), 1e-4);
   EXPECT_LT(ropeModeOrthonormalityError(b.M, warm), 1e-9);
 }
-

@@ -1,11 +1,12 @@
 // Scene loader validation (docs/scenes.md): each malformed input class is refused with a message
 // that names the file and the key.
+#include "crane_twin/io/scene.hpp"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "crane_twin/io/config_reader.hpp"
-#include "crane_twin/io/scene.hpp"
 
 using namespace crane_twin;
 
@@ -79,7 +80,8 @@ TEST(Scene, WrongTypeIsRefused) {
   expectRefused(p, {"duration=[1,2]"}, {p, "duration", "number"});
   expectRefused(p, {"rope.bending=maybe"}, {p, "rope.bending", "true or false"});
   expectRefused(p, {"rope=5"}, {p, "rope", "map"});
-  expectRefused(p, {"initial.payload_velocity=[0,0]"}, {p, "initial.payload_velocity", "3 numbers"});
+  expectRefused(p, {"initial.payload_velocity=[0,0]"},
+                {p, "initial.payload_velocity", "3 numbers"});
   expectRefused(p, {"rope.elements=2.5"}, {p, "rope.elements"});
 }
 
@@ -121,20 +123,23 @@ TEST(Scene, MissingEmptyOrBrokenFilesAreRefused) {
   const std::string broken = writeScene("broken.yaml", "crane: none\nrope: {model: full\n");
   expectRefused(broken, {}, {broken, "syntax error", "line"});
   const std::string crane = writeScene("nocrane.yaml", std::string(kGood));
-  expectRefused(crane, {"crane=t9999", "anchor=null", "structure.model=modal"}, {crane, "crane", "t9999"});
+  expectRefused(crane, {"crane=t9999", "anchor=null", "structure.model=modal"},
+                {crane, "crane", "t9999"});
   const std::string list = writeScene("list.yaml", "- 1\n- 2\n");
   expectRefused(list, {}, {list, "map"});
   // Found by scripts/fuzz_scene_loader.sh: a stray comma makes a list a key of the flow map,
   // which escaped as a yaml-cpp conversion error.
-  const std::string listKey = writeScene(
-      "list_key.yaml", "crane: none\nduration: 1\ntime_step: 0.01\n"
-                       "rope: {model: full, length: 10}\n"
-                       "initial: {mode: stress_free, payload_velocity:, [0, 0, 3]}\n");
+  const std::string listKey =
+      writeScene("list_key.yaml",
+                 "crane: none\nduration: 1\ntime_step: 0.01\n"
+                 "rope: {model: full, length: 10}\n"
+                 "initial: {mode: stress_free, payload_velocity:, [0, 0, 3]}\n");
   expectRefused(listKey, {}, {listKey, "initial", "not a name"});
   // Also found by fuzzing: a crane name longer than the file system allows threw a
   // std::filesystem error.
   const std::string longName = writeScene("long_crane.yaml", std::string(kGood));
-  expectRefused(longName, {"crane=" + std::string(600, 'x'), "anchor=null"}, {longName, "crane", "does not exist"});
+  expectRefused(longName, {"crane=" + std::string(600, 'x'), "anchor=null"},
+                {longName, "crane", "does not exist"});
 }
 
 TEST(Scene, CrossKeyLimitsAreRefused) {

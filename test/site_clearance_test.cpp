@@ -1,12 +1,13 @@
 // Segment distances against hand-computed cases and a brute-force search; crane parts on a site
 // against the geometry of the crane file.
+#include "crane_twin/analysis/site_clearance.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
 #include "crane_twin/analysis/segment_distance.hpp"
-#include "crane_twin/analysis/site_clearance.hpp"
 
 using namespace crane_twin;
 using V = Eigen::Vector3d;

@@ -35,8 +35,8 @@ std::string writeScene(const std::string& name, const std::string& text) {
 }
 
 SlackRun run(const std::string& scene, double duration, double time_step) {
-  std::unique_ptr<Simulation> sim = makeSimulation(buildCraneModel(
-      loadScene(scene, {"time_step=" + std::to_string(time_step), "duration=" + std::to_string(duration)})));
+  std::unique_ptr<Simulation> sim = makeSimulation(buildCraneModel(loadScene(
+      scene, {"time_step=" + std::to_string(time_step), "duration=" + std::to_string(duration)})));
   sim->initialize();
   SlackRun r;
   r.e_start = r.e_max = sim->series().energy;
@@ -61,7 +61,8 @@ void expectSlackEpisodeHandled(const std::string& scene, double duration, bool e
                                bool refine = true) {
   const SlackRun a = run(scene, duration, 1e-3);
   std::printf("%s: %ld steps, %ld energy-consistent, %ld halved; energy rise %.3g J of %.6g J\n",
-              scene.c_str(), a.steps, a.energy_consistent, a.halved, a.e_max - a.e_start, a.e_start);
+              scene.c_str(), a.steps, a.energy_consistent, a.halved, a.e_max - a.e_start,
+              a.e_start);
   EXPECT_GT(a.energy_consistent, 0) << "the scene never switched: it tests nothing";
   // No storm of halved steps (the step-halving control took 416 057 on the 60 deg release).
   EXPECT_LE(a.halved, a.steps / 100);
@@ -72,7 +73,8 @@ void expectSlackEpisodeHandled(const std::string& scene, double duration, bool e
   const SlackRun b = run(scene, duration, 1e-3 / 8.0);
   ASSERT_EQ(a.payload.size(), b.payload.size());
   double err = 0.0;
-  for (std::size_t i = 0; i < a.payload.size(); ++i) err = std::max(err, (a.payload[i] - b.payload[i]).norm());
+  for (std::size_t i = 0; i < a.payload.size(); ++i)
+    err = std::max(err, (a.payload[i] - b.payload[i]).norm());
   std::printf("  payload within %.3g m of the run at an eighth of the step\n", err);
   EXPECT_LT(err, 0.01);
 }
@@ -93,11 +95,12 @@ TEST(SlackEpisodes, ThrownPayload) {
   // step, and the next flight's height with it (measured against 1/16 ms after 2 s: 3.2, 5.3,
   // 6.9 and 4.7 cm at 1, 1/2, 1/4 and 1/8 ms; the symmetric law, which never snaps, 0.3 mm).
   expectSlackEpisodeHandled(
-      writeScene("throw", std::string(kAnchoredRope) +
-                              "rope: {model: full, elements: 20, length: 20.0, mass_per_length: 1.9, "
-                              "axial_stiffness: 2.2e7, bending_stiffness: 78.5}\n"
-                              "payload: {mass: 3600.0}\n"
-                              "initial: {mode: equilibrium, swing_deg: 0, payload_velocity: [0, 0, 3.0]}\n"),
+      writeScene("throw",
+                 std::string(kAnchoredRope) +
+                     "rope: {model: full, elements: 20, length: 20.0, mass_per_length: 1.9, "
+                     "axial_stiffness: 2.2e7, bending_stiffness: 78.5}\n"
+                     "payload: {mass: 3600.0}\n"
+                     "initial: {mode: equilibrium, swing_deg: 0, payload_velocity: [0, 0, 3.0]}\n"),
       2.0, true, false);
 }
 
@@ -105,22 +108,24 @@ TEST(SlackEpisodes, LargeRelease) {
   // 800 kg held at 60 deg on 30 m and released: the tension drops from twice the weight and
   // rings down towards zero.
   expectSlackEpisodeHandled(
-      writeScene("release", std::string(kAnchoredRope) +
-                                "rope: {model: full, elements: 20, length: 30.0, mass_per_length: 1.9, "
-                                "axial_stiffness: 2.2e7, bending_stiffness: 78.5}\n"
-                                "payload: {mass: 800.0}\n"
-                                "initial: {mode: equilibrium, swing_deg: 60.0}\n"),
+      writeScene("release",
+                 std::string(kAnchoredRope) +
+                     "rope: {model: full, elements: 20, length: 30.0, mass_per_length: 1.9, "
+                     "axial_stiffness: 2.2e7, bending_stiffness: 78.5}\n"
+                     "payload: {mass: 800.0}\n"
+                     "initial: {mode: equilibrium, swing_deg: 60.0}\n"),
       2.0, true);
 }
 
 TEST(SlackEpisodes, StressFreeRelease) {
   // Chrono's rope problem at 30 m: released unstretched, the payload bounces through zero tension.
   expectSlackEpisodeHandled(
-      writeScene("stress_free", std::string(kAnchoredRope) +
-                                    "rope: {model: full, elements: 20, length: 30.0, mass_per_length: 1.9, "
-                                    "axial_stiffness: 2.2e7, bending_stiffness: 78.5}\n"
-                                    "payload: {mass: 3600.0}\n"
-                                    "initial: {mode: stress_free, swing_deg: 10.0}\n"),
+      writeScene("stress_free",
+                 std::string(kAnchoredRope) +
+                     "rope: {model: full, elements: 20, length: 30.0, mass_per_length: 1.9, "
+                     "axial_stiffness: 2.2e7, bending_stiffness: 78.5}\n"
+                     "payload: {mass: 3600.0}\n"
+                     "initial: {mode: stress_free, swing_deg: 10.0}\n"),
       2.0, true);
 }
 
@@ -138,11 +143,12 @@ TEST(SlackEpisodes, FallingRopeWithoutPayload) {
 TEST(SlackEpisodes, ThrownPayloadOnTheFlexibleCrane) {
   // The T8036 in its modes: the snatch excites the structure, which no drive feeds.
   expectSlackEpisodeHandled(
-      writeScene("crane_throw",
-                 kT8036 + "structure: {model: modal, modes: 20, damping_ratio: 0.01}\n"
-                 "payload: {mass: 5000}\ntrolley: {radius: 40}\n"
-                 "rope: {model: full, elements: 20, length: 30.0}\n"
-                 "initial: {mode: equilibrium, swing_deg: 0.0, payload_velocity: [0, 0, 2.5]}\n"),
+      writeScene(
+          "crane_throw",
+          kT8036 + "structure: {model: modal, modes: 20, damping_ratio: 0.01}\n"
+                   "payload: {mass: 5000}\ntrolley: {radius: 40}\n"
+                   "rope: {model: full, elements: 20, length: 30.0}\n"
+                   "initial: {mode: equilibrium, swing_deg: 0.0, payload_velocity: [0, 0, 2.5]}\n"),
       2.0, true);
 }
 
@@ -158,13 +164,16 @@ TEST(SlackEpisodes, HoistingThroughSlack) {
   for (const char* speed : {"-1.0", "1.0"}) {
     SCOPED_TRACE(speed);
     expectSlackEpisodeHandled(
-        writeScene(std::string("hoist") + speed,
-                   std::string(kT8036 + "structure: {model: rigid}\npayload: {mass: 3600}\n"
-                               "trolley: {radius: 40}\n"
-                               "rope: {model: full, elements: 20, length: 30.0}\n"
-                               "initial: {mode: equilibrium, swing_deg: 0.0, payload_velocity: [0, 0, 2.0]}\n"
-                               "commands:\n  - {t: 0.0, hoist_speed: ") +
-                       speed + "}\n"),
+        writeScene(
+            std::string("hoist") + speed,
+            std::string(
+                kT8036 +
+                "structure: {model: rigid}\npayload: {mass: 3600}\n"
+                "trolley: {radius: 40}\n"
+                "rope: {model: full, elements: 20, length: 30.0}\n"
+                "initial: {mode: equilibrium, swing_deg: 0.0, payload_velocity: [0, 0, 2.0]}\n"
+                "commands:\n  - {t: 0.0, hoist_speed: ") +
+                speed + "}\n"),
         2.0, false, false);
   }
 }

@@ -1,12 +1,13 @@
 // The torque-limited slewing drive (docs/model.md "Slewing drive") against its closed forms, and
 // the scene keys that select it.
+#include "crane_twin/drives/slew_torque_drive.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
 #include "crane_twin/drives/crane_drives.hpp"
-#include "crane_twin/drives/slew_torque_drive.hpp"
 #include "crane_twin/io/input_error.hpp"
 #include "crane_twin/io/scene.hpp"
 #include "crane_twin/simulation/crane_model.hpp"

@@ -18,9 +18,7 @@ namespace {
 const std::string kScene =
     std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_combination1.yaml";
 
-CraneModel t8036(std::vector<std::string> sets) {
-  return buildCraneModel(loadScene(kScene, sets));
-}
+CraneModel t8036(std::vector<std::string> sets) { return buildCraneModel(loadScene(kScene, sets)); }
 }  // namespace
 
 TEST(SlewingLoads, LoadIsMinusMassTimesTheFramesAcceleration) {
@@ -36,7 +34,8 @@ TEST(SlewingLoads, LoadIsMinusMassTimesTheFramesAcceleration) {
   for (size_t n = 0; n < st.nodes.size(); ++n) {
     if (!turns[n]) continue;
     const Eigen::Vector3d X = st.nodes[n];
-    const Eigen::Vector3d t = acc * Eigen::Vector3d::UnitZ().cross(X) - rate * rate * Eigen::Vector3d(X.x(), X.y(), 0);
+    const Eigen::Vector3d t =
+        acc * Eigen::Vector3d::UnitZ().cross(X) - rate * rate * Eigen::Vector3d(X.x(), X.y(), 0);
     for (int d = 0; d < 3; ++d)
       if (st.dof_equation[6 * n + d] >= 0) a(st.dof_equation[6 * n + d]) = t(d);
     if (st.dof_equation[6 * n + 5] >= 0) a(st.dof_equation[6 * n + 5]) = acc;
@@ -84,8 +83,10 @@ TEST(SlewingLoads, SlewingModeCarriesTheRotatingPartsInertia) {
     const BeamSection& sec = st.sections[mem.section];
     const double mass = sec.density * sec.area * (st.nodes[mem.node1] - st.nodes[mem.node2]).norm();
     const double I = mass / 3.0 * (A.squaredNorm() + A.dot(B) + B.squaredNorm());
-    if (turns[mem.node1] && turns[mem.node2]) members += I;
-    else if (turns[mem.node1] || turns[mem.node2]) mixed += I;
+    if (turns[mem.node1] && turns[mem.node2])
+      members += I;
+    else if (turns[mem.node1] || turns[mem.node2])
+      mixed += I;
   }
   std::printf("slewing inertia %.4g kg m^2: lumped %.4g, members %.4g, mixed members <= %.3g\n",
               Izz, lumped, members, mixed);
@@ -98,17 +99,19 @@ TEST(SlewingLoads, StructureRespondsAsTheModalEquationsPredict) {
   // of 30 modes), the pendulum rope with the trolley at 2.5 m, where the structure's twist
   // hardly moves the trolley point (at 80 m the swinging rope's changed pull would add ~15 % of
   // the response: the first mode, mast torsion at 0.10 Hz, is soft). The difference between
-  // runs with the loads on and off is then the structure's response to the load alone. Independently of the time integrator, each
-  // mode obeys z'' + 2 w z' + w^2 z = f(s) = -(alpha T^T M r + (alpha s)^2 T^T M c), whose
-  // solution from rest is the Duhamel integral z(t) = int_0^t (t - s) e^{-w (t - s)} f(s) ds
-  // (evaluated here by Simpson's rule); and at constant speed the structure settles on the
-  // static response of the centrifugal load, K u = -theta'^2 M c, solved here by CHOLMOD.
+  // runs with the loads on and off is then the structure's response to the load alone.
+  // Independently of the time integrator, each mode obeys z'' + 2 w z' + w^2 z = f(s) = -(alpha T^T
+  // M r + (alpha s)^2 T^T M c), whose solution from rest is the Duhamel integral z(t) = int_0^t (t
+  // - s) e^{-w (t - s)} f(s) ds (evaluated here by Simpson's rule); and at constant speed the
+  // structure settles on the static response of the centrifugal load, K u = -theta'^2 M c, solved
+  // here by CHOLMOD.
   const double alpha = 0.02;
   auto run = [](bool loads, double seconds) {
-    const CraneModel m = t8036({"rope.model=pendulum", "structure.modes=30", "trolley.radius=2.5",
-                                "structure.damping_ratio=1", "initial.swing_deg=0",
-                                "time_step=0.005", std::string("slewing.inertial_loads=") + (loads ? "true" : "false"),
-                                "commands=[{t: 0, slew_rate: 0.084}]"});
+    const CraneModel m =
+        t8036({"rope.model=pendulum", "structure.modes=30", "trolley.radius=2.5",
+               "structure.damping_ratio=1", "initial.swing_deg=0", "time_step=0.005",
+               std::string("slewing.inertial_loads=") + (loads ? "true" : "false"),
+               "commands=[{t: 0, slew_rate: 0.084}]"});
     PendulumCraneSimulation sim(m);
     sim.initialize();
     for (long k = 0; k < std::lround(seconds / 0.005); ++k) sim.step();
@@ -134,14 +137,17 @@ TEST(SlewingLoads, StructureRespondsAsTheModalEquationsPredict) {
     for (int k = 0; k <= n; ++k) {
       const double sk = t * k / n;
       const double wgt = (k == 0 || k == n) ? 1.0 : (k % 2 ? 4.0 : 2.0);
-      sum += wgt * (t - sk) * std::exp(-w * (t - sk)) * -(alpha * er(i) + alpha * alpha * sk * sk * ec(i));
+      sum += wgt * (t - sk) * std::exp(-w * (t - sk)) *
+             -(alpha * er(i) + alpha * alpha * sk * sk * ec(i));
     }
     z(i) = sum * t / (3.0 * n);
   }
   const Eigen::Vector3d duhamel = modal.jibTipDisplacement(z);
   const Eigen::Vector3d d = run(true, t) - run(false, t);
-  std::printf("jib tip from the slewing loads at t = 4 s: run (%.4f, %.4f, %.4f) m, Duhamel "
-              "(%.4f, %.4f, %.4f) m\n", d.x(), d.y(), d.z(), duhamel.x(), duhamel.y(), duhamel.z());
+  std::printf(
+      "jib tip from the slewing loads at t = 4 s: run (%.4f, %.4f, %.4f) m, Duhamel "
+      "(%.4f, %.4f, %.4f) m\n",
+      d.x(), d.y(), d.z(), duhamel.x(), duhamel.y(), duhamel.z());
   // The Euler load bends the jib back against the slewing direction (-y for theta'' > 0).
   EXPECT_LT(d.y(), -0.1);
   EXPECT_NEAR(d.y(), duhamel.y(), 0.02 * std::abs(duhamel.y()));
@@ -150,9 +156,11 @@ TEST(SlewingLoads, StructureRespondsAsTheModalEquationsPredict) {
   const double w = 0.084;
   const Eigen::Vector3d dc = run(true, 44.2) - run(false, 44.2);
   Eigen::CholmodSupernodalLLT<SparseMatrix> llt(st.K);
-  const Eigen::Vector3d fe = jibTipDisplacement(st, llt.solve(Eigen::VectorXd(-(st.M * (w * w * c)))));
-  std::printf("jib tip at constant speed: run (%.5f, %.5f, %.5f) m, FE static (%.5f, %.5f, %.5f) m\n",
-              dc.x(), dc.y(), dc.z(), fe.x(), fe.y(), fe.z());
+  const Eigen::Vector3d fe =
+      jibTipDisplacement(st, llt.solve(Eigen::VectorXd(-(st.M * (w * w * c)))));
+  std::printf(
+      "jib tip at constant speed: run (%.5f, %.5f, %.5f) m, FE static (%.5f, %.5f, %.5f) m\n",
+      dc.x(), dc.y(), dc.z(), fe.x(), fe.y(), fe.z());
   // Flung outwards (+x) and the jib tip dips: the radial-vertical plane of the centrifugal
   // load. Sideways (y) the run keeps ~0.7 mm from the swinging rope: the load-on run's trolley
   // point twisted 0.09 m further during the start, so its payload swings a little differently.

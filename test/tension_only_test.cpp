@@ -83,8 +83,8 @@ TEST(TensionOnlyRope, ThrownPayloadBouncesWithTheOneSidedSpringsPeriodAndGainsNo
   const double kinetic = 0.5 * kMass * kV0 * kV0;
   for (const char* model : {"full", "pendulum"}) {
     SCOPED_TRACE(model);
-    std::unique_ptr<Simulation> sim =
-        makeSimulation(buildCraneModel(loadScene(throwScene(), {std::string("rope.model=") + model})));
+    std::unique_ptr<Simulation> sim = makeSimulation(
+        buildCraneModel(loadScene(throwScene(), {std::string("rope.model=") + model})));
     sim->initialize();
     const SeriesValues start = sim->series();
     const double z_rest = start.payload.z();
@@ -104,12 +104,12 @@ TEST(TensionOnlyRope, ThrownPayloadBouncesWithTheOneSidedSpringsPeriodAndGainsNo
     // The first bounce: later ones are shortened by the energy each snap leaves in the rope's
     // axial modes, which the integrator's high-frequency damping takes out.
     const double first = c[1] - c[0];
-    const std::size_t after_first =
-        std::lower_bound(t.begin(), t.end(), c[1]) - t.begin();
+    const std::size_t after_first = std::lower_bound(t.begin(), t.end(), c[1]) - t.begin();
     const double snap_loss = start.energy - e[after_first];
-    std::printf("%s: first bounce %.6f s, closed form %.6f s; energy gain %.3g J, loss over the "
-                "first bounce %.3g J of %.0f J\n",
-                model, first, period, e_max - start.energy, snap_loss, kinetic);
+    std::printf(
+        "%s: first bounce %.6f s, closed form %.6f s; energy gain %.3g J, loss over the "
+        "first bounce %.3g J of %.0f J\n",
+        model, first, period, e_max - start.energy, snap_loss, kinetic);
     EXPECT_NEAR(first, period, 1e-3 * period);
     // A massless rope snaps taut elastically: the numerical loss stays below 1 % of the throw.
     EXPECT_LT(snap_loss, 1e-2 * kinetic);

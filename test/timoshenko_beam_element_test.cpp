@@ -2,12 +2,13 @@
 // Euler-Bernoulli cantilever frequencies, axial and torsional frequencies, rigid-body modes,
 // and mesh convergence where shear matters. Eigenvalues here come from Eigen's dense solver,
 // independent of the ARPACK path used for the crane.
+#include "crane_twin/elements/timoshenko_beam_element.hpp"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 
 #include "crane_twin/elements/sparse_assembly.hpp"
-#include "crane_twin/elements/timoshenko_beam_element.hpp"
 
 using namespace crane_twin;
 
@@ -132,8 +133,8 @@ TEST(TimoshenkoBeam, AxialAndTorsionalFrequencies) {
   };
   for (int n = 1; n <= 3; ++n) {
     const double wa = (2 * n - 1) * M_PI / (2 * L) * std::sqrt(s.E / s.density);
-    const double wt = (2 * n - 1) * M_PI / (2 * L) *
-                      std::sqrt(s.G * s.J / (s.density * (s.Iy + s.Iz)));
+    const double wt =
+        (2 * n - 1) * M_PI / (2 * L) * std::sqrt(s.G * s.J / (s.density * (s.Iy + s.Iz)));
     EXPECT_LT(closest(wa), 0.005) << "axial mode " << n;
     EXPECT_LT(closest(wt), 0.005) << "torsional mode " << n;
   }

@@ -1,11 +1,12 @@
 // The T8036 structure generated from config/cranes/t8036.yaml against docs/model.md's targets.
+#include "crane_twin/structure/tower_crane_structure.hpp"
+
 #include <gtest/gtest.h>
 
 #include <fstream>
 
 #include "crane_twin/io/config_reader.hpp"
 #include "crane_twin/structure/modal_analysis.hpp"
-#include "crane_twin/structure/tower_crane_structure.hpp"
 
 using namespace crane_twin;
 

@@ -1,11 +1,12 @@
 // The position controller on the rate drives against the drives' own limits and the
 // time-optimal trapezoid (v_max, a_max): goals reached within tolerance, no overshoot beyond
 // it, points in order and not before their time; bad trajectories refused with the reason.
+#include "crane_twin/drives/trajectory_follower.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "crane_twin/drives/trajectory_follower.hpp"
 #include "crane_twin/io/scene.hpp"
 
 using namespace crane_twin;
@@ -23,13 +24,13 @@ TrajectoryPoint point(double t, std::optional<double> slew, std::optional<double
 }
 
 struct FollowRun {
-  double done_at = -1.0;                 // [s], -1: not reached
+  double done_at = -1.0;  // [s], -1: not reached
   double min_trolley = 1e9, max_slew = -1e9, max_hoist = -1e9;
   double end_slew = 0, end_trolley = 0, end_hoist = 0;
 };
 
 FollowRun follow(const Scene& scene, const std::vector<TrajectoryPoint>& points, double t_end,
-           double dt = 0.005) {
+                 double dt = 0.005) {
   CraneDrives drives(scene);
   TrajectoryFollower f;
   f.start(points, 0.0);
@@ -71,8 +72,8 @@ TEST(TrajectoryFollower, ReachesEachAxisWithoutOvershootNearTheTimeOptimalMove) 
   EXPECT_LE(r.max_slew, 1.0 + TrajectoryFollower::kTolerance[0]);
   EXPECT_LE(r.max_hoist, 60.0 + 1e-12);
   // The slowest axis decides; braking at 0.8 a_max costs a little over the trapezoid.
-  const double t_opt = std::max({trapezoid(1.0, c.slewing), trapezoid(50.0, c.trolley),
-                                 trapezoid(20.0, c.hoist)});
+  const double t_opt =
+      std::max({trapezoid(1.0, c.slewing), trapezoid(50.0, c.trolley), trapezoid(20.0, c.hoist)});
   std::printf("reached after %.2f s, time-optimal %.2f s\n", r.done_at, t_opt);
   EXPECT_GE(r.done_at, t_opt - 1e-9);
   EXPECT_LT(r.done_at, 1.1 * t_opt);
@@ -82,8 +83,10 @@ TEST(TrajectoryFollower, PointsInOrderAndNeverBeforeTheirTime) {
   const Scene s = loadScene(kScene);
   // Out to 70 m, then back to 50 m; the second point not before 40 s (the move itself needs
   // about 12 + 22 s).
-  const FollowRun r = follow(s, {point(0.0, std::nullopt, 70.0, std::nullopt),
-                           point(40.0, std::nullopt, 50.0, std::nullopt)}, 80.0);
+  const FollowRun r = follow(
+      s,
+      {point(0.0, std::nullopt, 70.0, std::nullopt), point(40.0, std::nullopt, 50.0, std::nullopt)},
+      80.0);
   ASSERT_GT(r.done_at, 0.0);
   EXPECT_GE(r.done_at, 40.0);
   EXPECT_NEAR(r.end_trolley, 50.0, TrajectoryFollower::kTolerance[1]);
@@ -96,9 +99,11 @@ TEST(TrajectoryFollower, BadTrajectoriesAreRefusedWithTheReason) {
   auto why = [&](std::vector<TrajectoryPoint> p) { return TrajectoryFollower::validate(p, c); };
   EXPECT_EQ(why({point(0.0, 0.5, 40.0, 30.0)}), "");
   EXPECT_NE(why({}).find("at least one point"), std::string::npos);
-  EXPECT_NE(why({point(0.0, std::nan(""), std::nullopt, std::nullopt)}).find("slew is not a finite"),
-            std::string::npos);
-  EXPECT_NE(why({point(5.0, 0.1, std::nullopt, std::nullopt), point(2.0, 0.2, std::nullopt, std::nullopt)})
+  EXPECT_NE(
+      why({point(0.0, std::nan(""), std::nullopt, std::nullopt)}).find("slew is not a finite"),
+      std::string::npos);
+  EXPECT_NE(why({point(5.0, 0.1, std::nullopt, std::nullopt),
+                 point(2.0, 0.2, std::nullopt, std::nullopt)})
                 .find("point 1: time_from_start 2"),
             std::string::npos);
   EXPECT_NE(why({point(-1.0, 0.1, std::nullopt, std::nullopt)}).find("time_from_start -1"),

@@ -37,9 +37,9 @@ CommandEntry moving() {
 }  // namespace
 
 TEST(ContinueFrom, ACopyWithTheSameStepRunsIdentically) {
-  // Reduced and full order: run A 2 s under motion, B (another instance) continues from A;
-  // both run 3 s more under the same command: payloads equal to round-off.
-  for (const char* model : {"rope.model=reduced", "rope.model=full"}) {
+  // Reduced, full order and pendulum: run A 2 s under motion, B (another instance) continues
+  // from A; both run 3 s more under the same command: payloads equal to round-off.
+  for (const char* model : {"rope.model=reduced", "rope.model=full", "rope.model=pendulum"}) {
     const CraneModel m = live({model, "initial.swing_deg=3"});
     std::unique_ptr<Simulation> a = makeSimulation(m), b = makeSimulation(m);
     a->initialize();
@@ -56,11 +56,32 @@ TEST(ContinueFrom, ACopyWithTheSameStepRunsIdentically) {
     EXPECT_NEAR(a->drives().trolleyRadius(), b->drives().trolleyRadius(), 1e-12) << model;
     EXPECT_NEAR(a->drives().hoistLength(), b->drives().hoistLength(), 1e-12) << model;
   }
-  // A pendulum run cannot continue another's state: said so.
-  const CraneModel p = live({"rope.model=pendulum"});
-  std::unique_ptr<Simulation> s = makeSimulation(p);
-  s->initialize();
-  EXPECT_THROW(s->continueFrom(*s), InputError);
+  // A run cannot continue another rope model's state: said so.
+  std::unique_ptr<Simulation> p = makeSimulation(live({"rope.model=pendulum"}));
+  std::unique_ptr<Simulation> f = makeSimulation(live({"rope.model=full"}));
+  p->initialize();
+  f->initialize();
+  EXPECT_THROW(p->continueFrom(*f), InputError);
+  EXPECT_THROW(f->continueFrom(*p), InputError);
+}
+
+TEST(PayloadForecast, ThePendulumForecastsItsOwnFuture) {
+  // The cheapest rung forecasts too: at the twin's step the forecast is the twin's future.
+  const CraneModel m = live({"rope.model=pendulum", "initial.swing_deg=4"});
+  std::unique_ptr<Simulation> twin = makeSimulation(m);
+  twin->initialize();
+  for (int k = 0; k < 200; ++k) twin->step();
+  const CommandEntry c = moving();
+  PayloadForecaster same(m, 0.0);
+  const PayloadForecast f = same.run(*twin, c, 10.0, 0.5);
+  ASSERT_EQ(f.t.size(), 21u);
+  twin->setCommand(c);
+  for (size_t i = 0; i < f.t.size(); ++i) {
+    while (twin->time() < f.t[i] - 1e-9) twin->step();
+    EXPECT_LT((f.payload[i] - twin->series().payload).norm(), 1e-9) << "t " << f.t[i];
+  }
+  EXPECT_GT(f.max_swing, 0.1);
+  EXPECT_FALSE(f.failed);
 }
 
 TEST(PayloadForecast, AtTheTwinsStepItIsTheTwinsFutureAndAtTwiceTheStepClose) {
@@ -274,8 +295,8 @@ TEST(Twin, LocksOntoARealCranesSwayAndForecastsIt) {
   // 5 cm noise; the estimator carries the structure's sideways modes too (the real crane's jib
   // rings at 0.1 Hz after the release; the rope's swing alone left 0.55 m 10 s forecast errors).
   // After 30 s: estimate within 0.2 m; the 10 s forecasts within 0.3 m.
-  const CraneModel real_model = live({"rope.model=full", "payload.mass=3900",
-                                      "initial.swing_deg=4", "initial.swing_azimuth_deg=50"});
+  const CraneModel real_model = live({"rope.model=full", "payload.mass=3900", "initial.swing_deg=4",
+                                      "initial.swing_azimuth_deg=50"});
   const CraneModel twin_model = live({"rope.elements=120", "initial.swing_deg=0"});
   std::unique_ptr<Simulation> real = makeSimulation(real_model), twin = makeSimulation(twin_model);
   real->initialize();
@@ -317,7 +338,8 @@ TEST(Twin, LocksOntoARealCranesSwayAndForecastsIt) {
     if (k % 40 == 0) {  // 5 Hz payload measurements
       const Eigen::Vector2d z = p_real.head<2>() + 0.05 * Eigen::Vector2d(unit(rng), unit(rng));
       const SeriesValues row = twin->series();
-      const SwayUpdate u = estimator.update(z, row.payload.head<2>(), swayModelAt(*twin, row, modes, 9.81));
+      const SwayUpdate u =
+          estimator.update(z, row.payload.head<2>(), swayModelAt(*twin, row, modes, 9.81));
       if (t > 30.0) {
         nis += u.normalized;
         ++nis_n;
@@ -326,7 +348,8 @@ TEST(Twin, LocksOntoARealCranesSwayAndForecastsIt) {
         applyTwinCorrection(*twin, u, modes);
       }
     }
-    if (t >= 30.0) worst_estimate = std::max(worst_estimate, (twin->series().payload - p_real).norm());
+    if (t >= 30.0)
+      worst_estimate = std::max(worst_estimate, (twin->series().payload - p_real).norm());
     if (t >= 30.0 && t <= 45.0 && k % 200 == 0) {
       const Eigen::Vector3d r = follower.holdRates(twin->time());
       CommandEntry held;
@@ -341,10 +364,13 @@ TEST(Twin, LocksOntoARealCranesSwayAndForecastsIt) {
   for (const auto& [t0, f] : forecasts) {
     const double t10 = f.t.back();
     for (const auto& [t, p] : truth)
-      if (std::abs(t - t10) < 1e-6) worst_forecast = std::max(worst_forecast, (f.payload.back() - p).norm());
+      if (std::abs(t - t10) < 1e-6)
+        worst_forecast = std::max(worst_forecast, (f.payload.back() - p).norm());
   }
-  std::printf("twin: worst estimate after 30 s %.3f m, worst 10 s forecast %.3f m (%zu), "
-              "mean NIS %.2f\n", worst_estimate, worst_forecast, forecasts.size(), nis / nis_n);
+  std::printf(
+      "twin: worst estimate after 30 s %.3f m, worst 10 s forecast %.3f m (%zu), "
+      "mean NIS %.2f\n",
+      worst_estimate, worst_forecast, forecasts.size(), nis / nis_n);
   EXPECT_LT(worst_forecast, 0.3);
 }
 

@@ -41,8 +41,8 @@ TEST(Wind, SteadyWindOnThePayloadDeflectsTheRopeByAtanFOverW) {
   const double F = 0.5 * 1.25 * 1.2 * 10.0 * U * U, W = 3600.0 * 9.81 + 0.001 * 60.0 * 9.81 / 2;
   for (const char* model : {"full", "pendulum", "reduced"}) {
     SCOPED_TRACE(model);
-    std::unique_ptr<Simulation> sim =
-        makeSimulation(buildCraneModel(loadScene(payloadWindScene(), {std::string("rope.model=") + model})));
+    std::unique_ptr<Simulation> sim = makeSimulation(
+        buildCraneModel(loadScene(payloadWindScene(), {std::string("rope.model=") + model})));
     sim->initialize();
     for (int k = 0; k <= 400; ++k) {
       if (k % 100 == 0) {
@@ -82,16 +82,20 @@ TEST(Wind, StructuresStaticResponseIsTheDirectSolveOfKuEqualsF) {
     return Eigen::Vector3d(sim->series().jib_tip);
   };
   const Eigen::Vector3d full = tipOf("full", m.scene.wind->speed) - tipOf("full", 0.0);
-  EXPECT_LT((full - tip).norm(), 1e-6 * tip.norm()) << full.transpose() << " vs " << tip.transpose();
+  EXPECT_LT((full - tip).norm(), 1e-6 * tip.norm())
+      << full.transpose() << " vs " << tip.transpose();
   // 100 modes: the static response truncated to the lowest modes.
   const Eigen::Vector3d modal = tipOf("modal", m.scene.wind->speed) - tipOf("modal", 0.0);
-  EXPECT_LT((modal - tip).norm(), 1e-3 * tip.norm()) << modal.transpose() << " vs " << tip.transpose();
+  EXPECT_LT((modal - tip).norm(), 1e-3 * tip.norm())
+      << modal.transpose() << " vs " << tip.transpose();
   double Fy = 0.0;
   for (std::size_t n = 0; n < st.nodes.size(); ++n)
     if (st.dof_equation[6 * n + 1] >= 0) Fy += F(st.dof_equation[6 * n + 1]);
-  std::printf("wind on the structure %.1f kN (free nodes); jib tip K u = F %.4f %.4f %.4f m; "
-              "full %.2e, 100 modes %.2e relative\n", Fy / 1e3, tip.x(), tip.y(), tip.z(),
-              (full - tip).norm() / tip.norm(), (modal - tip).norm() / tip.norm());
+  std::printf(
+      "wind on the structure %.1f kN (free nodes); jib tip K u = F %.4f %.4f %.4f m; "
+      "full %.2e, 100 modes %.2e relative\n",
+      Fy / 1e3, tip.x(), tip.y(), tip.z(), (full - tip).norm() / tip.norm(),
+      (modal - tip).norm() / tip.norm());
 }
 
 TEST(Wind, ReducedRopeFollowsTheFullOrderOneInWindOnAFlexibleCrane) {
@@ -103,7 +107,8 @@ TEST(Wind, ReducedRopeFollowsTheFullOrderOneInWindOnAFlexibleCrane) {
   auto run = [&](const char* model) {
     std::vector<std::string> oo = o;
     oo.push_back(std::string("rope.model=") + model);
-    std::unique_ptr<Simulation> sim = makeSimulation(buildCraneModel(loadScene(kScenes + "t8036_wind.yaml", oo)));
+    std::unique_ptr<Simulation> sim =
+        makeSimulation(buildCraneModel(loadScene(kScenes + "t8036_wind.yaml", oo)));
     sim->initialize();
     std::vector<Eigen::Vector3d> p;
     for (int k = 0; k < 4000; ++k) {
@@ -114,7 +119,8 @@ TEST(Wind, ReducedRopeFollowsTheFullOrderOneInWindOnAFlexibleCrane) {
   };
   const std::vector<Eigen::Vector3d> full = run("full"), reduced = run("reduced");
   double worst = 0.0;
-  for (std::size_t i = 0; i < full.size(); ++i) worst = std::max(worst, (full[i] - reduced[i]).norm());
+  for (std::size_t i = 0; i < full.size(); ++i)
+    worst = std::max(worst, (full[i] - reduced[i]).norm());
   EXPECT_LT(worst, 1e-4) << "reduced against full payload";
 }
 
@@ -177,9 +183,10 @@ TEST(Wind, ThreeSecondMeanAtTheJibAndItsWarning) {
   EXPECT_NEAR(m, (151 * 20.0 + 150 * 30.0) / 301.0, 1e-9);
   // In a run: over the 20 m/s limit at the jib the bit is set, under it not.
   for (double speed : {14.0, 18.0}) {
-    const std::vector<std::string> o = {"wind.speed=" + std::to_string(speed), "wind.gust.intensity=0",
-                                        "duration=0.1"};
-    std::unique_ptr<Simulation> sim = makeSimulation(buildCraneModel(loadScene(kScenes + "t8036_wind.yaml", o)));
+    const std::vector<std::string> o = {"wind.speed=" + std::to_string(speed),
+                                        "wind.gust.intensity=0", "duration=0.1"};
+    std::unique_ptr<Simulation> sim =
+        makeSimulation(buildCraneModel(loadScene(kScenes + "t8036_wind.yaml", o)));
     sim->initialize();
     sim->step();
     const SeriesValues v = sim->series();
@@ -203,7 +210,8 @@ TEST(Wind, MeasuredWindReplacesTheScenesAndBadInputIsRefused) {
   EXPECT_THROW(loadScene(p, {"wind.gust.seed=1"}), InputError);  // intensity is required
   EXPECT_THROW(loadScene(p, {"wind.speeed=1"}), InputError);
   EXPECT_THROW(loadScene(p, {"anchor=[0, 0, 0]"}), InputError);
-  EXPECT_THROW(loadScene(kScenes + "t8036_wind.yaml", {"rope.model=reduced", "rope.reduction=subdomains"}),
-               InputError);
+  EXPECT_THROW(
+      loadScene(kScenes + "t8036_wind.yaml", {"rope.model=reduced", "rope.reduction=subdomains"}),
+      InputError);
   EXPECT_THROW(WindField(WindSettings{}, 0.0), std::invalid_argument);
 }

@@ -5,9 +5,9 @@
 #include <cstdio>
 #include <sstream>
 
-#include "crane_twin/simulation/reduced_crane_simulation.hpp"
-#include "crane_twin/simulation/simulation.hpp"
 #include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/simulation/simulation.hpp"
+#include "crane_twin/simulation/subdomain_reduced_simulation.hpp"
 
 namespace crane_twin {
 
@@ -63,35 +63,59 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
       quick ? std::vector<double>{0.001, 0.01}
             : std::vector<double>{0.001, 0.002, 0.005, 0.01, 0.02, 0.05, 0.1};
   for (double dt : fullSteps) {
-    g.push_back({"full", {"rope.model=full", "time_step=" + num(dt)}, dt, 0, 0.0,
-                 scene.structure_modes, scene.structure_model});
+    g.push_back({"full",
+                 {"rope.model=full", "time_step=" + num(dt)},
+                 dt,
+                 0,
+                 0.0,
+                 scene.structure_modes,
+                 scene.structure_model});
   }
   const std::vector<int> modes = quick ? std::vector<int>{10} : std::vector<int>{6, 10, 20};
-  const std::vector<double> deltas = quick ? std::vector<double>{0.05, 0.5} : std::vector<double>{0.05, 0.2, 0.5};
-  const std::vector<double> steps = quick ? std::vector<double>{0.001, 0.01} : std::vector<double>{0.001, 0.005, 0.01};
+  const std::vector<double> deltas =
+      quick ? std::vector<double>{0.05, 0.5} : std::vector<double>{0.05, 0.2, 0.5};
+  const std::vector<double> steps =
+      quick ? std::vector<double>{0.001, 0.01} : std::vector<double>{0.001, 0.005, 0.01};
   const std::string frame = scene.rope.subdomain_frame;
   for (int m : modes)
     for (double d : deltas)
       for (double dt : steps) {
         g.push_back({"reduced",
-                     {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=" + std::to_string(m),
-                      "rope.subdomain_delta=" + num(d), "time_step=" + num(dt)},
-                     dt, m, d, scene.structure_modes, scene.structure_model, frame});
+                     {"rope.model=reduced", "rope.reduction=subdomains",
+                      "rope.mode_count=" + std::to_string(m), "rope.subdomain_delta=" + num(d),
+                      "time_step=" + num(dt)},
+                     dt,
+                     m,
+                     d,
+                     scene.structure_modes,
+                     scene.structure_model,
+                     frame});
       }
   if (!quick) {
     for (double dt : {0.02, 0.05}) {
       g.push_back({"reduced",
-                   {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=10", "rope.subdomain_delta=0.05",
-                    "time_step=" + num(dt)},
-                   dt, 10, 0.05, scene.structure_modes, scene.structure_model, frame});
+                   {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=10",
+                    "rope.subdomain_delta=0.05", "time_step=" + num(dt)},
+                   dt,
+                   10,
+                   0.05,
+                   scene.structure_modes,
+                   scene.structure_model,
+                   frame});
     }
   }
   if (!quick && frame != "fixed") {
     for (double d : deltas) {
-      g.push_back({"reduced",
-                   {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=10", "rope.subdomain_delta=" + num(d),
-                    "time_step=0.005", "rope.subdomain_frame=fixed"},
-                   0.005, 10, d, scene.structure_modes, scene.structure_model, "fixed"});
+      g.push_back(
+          {"reduced",
+           {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=10",
+            "rope.subdomain_delta=" + num(d), "time_step=0.005", "rope.subdomain_frame=fixed"},
+           0.005,
+           10,
+           d,
+           scene.structure_modes,
+           scene.structure_model,
+           "fixed"});
     }
   }
   if (!quick) {
@@ -100,28 +124,48 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
     half.rope.mode_count = 0;
     half.rope.mode_fraction = 0.5;
     g.push_back({"reduced",
-                 {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=0", "rope.mode_fraction=0.5",
-                  "time_step=" + num(scene.time_step)},
-                 scene.time_step, keptRopeModes(half), scene.rope.subdomain_delta,
-                 scene.structure_modes, scene.structure_model, frame});
+                 {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=0",
+                  "rope.mode_fraction=0.5", "time_step=" + num(scene.time_step)},
+                 scene.time_step,
+                 keptRopeModes(half),
+                 scene.rope.subdomain_delta,
+                 scene.structure_modes,
+                 scene.structure_model,
+                 frame});
     if (frame != "fixed") {
       g.push_back({"reduced",
-                   {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=0", "rope.mode_fraction=0.5",
-                    "time_step=" + num(scene.time_step), "rope.subdomain_frame=fixed"},
-                   scene.time_step, keptRopeModes(half), scene.rope.subdomain_delta,
-                   scene.structure_modes, scene.structure_model, "fixed"});
+                   {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=0",
+                    "rope.mode_fraction=0.5", "time_step=" + num(scene.time_step),
+                    "rope.subdomain_frame=fixed"},
+                   scene.time_step,
+                   keptRopeModes(half),
+                   scene.rope.subdomain_delta,
+                   scene.structure_modes,
+                   scene.structure_model,
+                   "fixed"});
     }
     if (scene.crane && scene.structure_model == "modal") {
       g.push_back({"reduced",
-                   {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=10", "rope.subdomain_delta=0.2",
-                    "time_step=0.005", "structure.modes=20"},
-                   0.005, 10, 0.2, 20, "modal", frame});
+                   {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=10",
+                    "rope.subdomain_delta=0.2", "time_step=0.005", "structure.modes=20"},
+                   0.005,
+                   10,
+                   0.2,
+                   20,
+                   "modal",
+                   frame});
     }
   }
   // The default reduced rope (rotation-invariant basis, docs/model.md) at the full model's steps.
-  for (double dt : quick ? std::vector<double>{0.001, 0.01} : std::vector<double>{0.001, 0.005, 0.01, 0.05}) {
-    g.push_back({"invariant", {"rope.model=reduced", "rope.reduction=invariant", "time_step=" + num(dt)},
-                 dt, 0, 0.0, scene.structure_modes, scene.structure_model});
+  for (double dt :
+       quick ? std::vector<double>{0.001, 0.01} : std::vector<double>{0.001, 0.005, 0.01, 0.05}) {
+    g.push_back({"invariant",
+                 {"rope.model=reduced", "rope.reduction=invariant", "time_step=" + num(dt)},
+                 dt,
+                 0,
+                 0.0,
+                 scene.structure_modes,
+                 scene.structure_model});
   }
   // The fidelity ladder: the pendulum rope, and the rigid structure under each rope model.
   auto pendulum = [&](double dt, int structureModes, const std::string& structure) {
@@ -138,12 +182,22 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
     if (scene.structure_model == "modal") pendulum(0.01, 20, "modal");
     pendulum(0.001, 0, "rigid");
     pendulum(0.01, 0, "rigid");
-    g.push_back({"full", {"rope.model=full", "time_step=0.01", "structure.model=rigid"}, 0.01, 0,
-                 0.0, 0, "rigid"});
+    g.push_back({"full",
+                 {"rope.model=full", "time_step=0.01", "structure.model=rigid"},
+                 0.01,
+                 0,
+                 0.0,
+                 0,
+                 "rigid"});
     g.push_back({"reduced",
-                 {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=10", "rope.subdomain_delta=0.2",
-                  "time_step=0.005", "structure.model=rigid"},
-                 0.005, 10, 0.2, 0, "rigid", frame});
+                 {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=10",
+                  "rope.subdomain_delta=0.2", "time_step=0.005", "structure.model=rigid"},
+                 0.005,
+                 10,
+                 0.2,
+                 0,
+                 "rigid",
+                 frame});
   }
   return g;
 }
@@ -163,7 +217,12 @@ std::vector<SweepResult> runSweep(const std::string& scene_file,
   };
   const CraneModel refModel = modelWith({"rope.model=full", "time_step=" + num(reference_dt)});
   SweepResult ref;
-  ref.setting = {"reference", {}, reference_dt, 0, 0.0, refModel.scene.structure_modes,
+  ref.setting = {"reference",
+                 {},
+                 reference_dt,
+                 0,
+                 0.0,
+                 refModel.scene.structure_modes,
                  refModel.scene.structure_model};
   const Trajectory reference = recordRun(refModel, interval, &ref.wall_s);
   ref.rtf = refModel.scene.duration / ref.wall_s;
@@ -199,8 +258,7 @@ std::string sweepRow(const std::string& scene, const SweepResult& r) {
   s << scene << ',' << c.model << ',' << c.time_step << ',' << c.rope_modes << ',' << c.delta << ','
     << c.structure_modes << ',' << r.wall_s << ',' << r.rtf << ',' << r.subdomains << ','
     << r.mode_updates_s << ',' << r.error.payload_max << ',' << r.error.rope_rms_max << ','
-    << r.error.cab_max << ',' << r.error.jib_tip_max << ',' << c.structure_model << ','
-    << c.frame;
+    << r.error.cab_max << ',' << r.error.jib_tip_max << ',' << c.structure_model << ',' << c.frame;
   return s.str();
 }
 

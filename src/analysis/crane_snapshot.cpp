@@ -4,8 +4,8 @@
 #include <stdexcept>
 
 #include "crane_twin/drives/crane_drives.hpp"
-#include "crane_twin/solvers/full_order_solver.hpp"
 #include "crane_twin/rope/rope_support.hpp"
+#include "crane_twin/solvers/full_order_solver.hpp"
 #include "crane_twin/structure/structure_support.hpp"
 
 namespace crane_twin {
@@ -39,7 +39,8 @@ FramePose groupFit(const TowerCraneStructure& structure, const Eigen::VectorXd& 
 FramePose rigidFit(const std::vector<Eigen::Vector3d>& undeformed,
                    const std::vector<Eigen::Vector3d>& deformed) {
   if (undeformed.size() < 3 || undeformed.size() != deformed.size()) {
-    throw std::invalid_argument("rigid fit needs the same number (>= 3) of undeformed and deformed points");
+    throw std::invalid_argument(
+        "rigid fit needs the same number (>= 3) of undeformed and deformed points");
   }
   const int n = static_cast<int>(undeformed.size());
   Eigen::Matrix3Xd x(3, n), y(3, n);
@@ -83,9 +84,10 @@ CraneSnapshot snapshotOf(const Simulation& sim, const SnapshotOptions& options) 
     return f;
   };
   s.payload = alongSegment(s.rope_curve.size() - 1);
-  s.hook = sim.hookNode() == sim.ropeNodes() - 1
-               ? s.payload
-               : alongSegment(static_cast<std::size_t>(sim.hookNode() * options.samples_per_element));
+  s.hook =
+      sim.hookNode() == sim.ropeNodes() - 1
+          ? s.payload
+          : alongSegment(static_cast<std::size_t>(sim.hookNode() * options.samples_per_element));
 
   const Eigen::Matrix3d R = slewRotation(s.slew_angle);
   s.slewing.orientation = Eigen::Quaterniond(R);

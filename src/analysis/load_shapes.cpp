@@ -8,9 +8,9 @@ namespace crane_twin {
 
 namespace {
 
-constexpr double kSteelDensity = 7850.0;   // kg/m^3
-constexpr double kHookBlockFill = 0.5;     // solid fraction of the hook block's box
-constexpr double kPayloadDensity = 1000.0; // kg/m^3, mixed construction load
+constexpr double kSteelDensity = 7850.0;    // kg/m^3
+constexpr double kHookBlockFill = 0.5;      // solid fraction of the hook block's box
+constexpr double kPayloadDensity = 1000.0;  // kg/m^3, mixed construction load
 
 void checkMass(double m, const char* what) {
   if (!std::isfinite(m) || m < 0.0) {
@@ -40,7 +40,8 @@ LoadShapes loadShapes(const CraneSnapshot& s, double hook_block_mass, double pay
   out.payload.size = Eigen::Vector3d::Constant(e);
   FramePose top = s.payload;
   if ((s.payload.position - s.hook.position).norm() < 1e-9) {
-    top.position = s.hook.position - s.hook.orientation * Eigen::Vector3d(0.0, 0.0, out.hook_block.size.z());
+    top.position =
+        s.hook.position - s.hook.orientation * Eigen::Vector3d(0.0, 0.0, out.hook_block.size.z());
   }
   out.payload.pose = hangingBelow(top, e);
   return out;

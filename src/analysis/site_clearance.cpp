@@ -29,8 +29,8 @@ std::vector<CranePart> cranePartsOnSite(const CraneDescription& c, const SitePos
   parts.push_back(boom("jib", c.jib, 1.0, s.jib_tip_displacement));
   parts.push_back(boom("counter_jib", c.counter_jib, -1.0, Eigen::Vector3d::Zero()));
   parts.push_back({"rope", pose.toSite(s.trolley), pose.toSite(s.payload), 0.0});
-  parts.push_back({"payload", pose.toSite(s.payload), pose.toSite(s.payload),
-                   settings.payload_radius});
+  parts.push_back(
+      {"payload", pose.toSite(s.payload), pose.toSite(s.payload), settings.payload_radius});
   return parts;
 }
 
@@ -82,7 +82,8 @@ ForecastClearance forecastClearance(const CraneDescription& a, const SitePose& p
                                     const CraneClearanceState& now_b, const PayloadPath& path_b,
                                     const ClearanceSettings& settings, double max_gap) {
   if (path_a.t.size() != path_a.payload.size() || path_b.t.size() != path_b.payload.size()) {
-    throw std::invalid_argument("forecast clearance: a path's times and positions differ in number");
+    throw std::invalid_argument(
+        "forecast clearance: a path's times and positions differ in number");
   }
   ForecastClearance out;
   out.closest.distance = std::numeric_limits<double>::infinity();
@@ -100,8 +101,8 @@ ForecastClearance forecastClearance(const CraneDescription& a, const SitePose& p
     const PartClearance c = minimumClearance(
         cranePartsOnSite(a, pose_a, stateFromForecastPayload(a, pose_a, now_a, path_a.payload[i]),
                          settings),
-        cranePartsOnSite(b, pose_b, stateFromForecastPayload(b, pose_b, now_b, path_b.payload[best]),
-                         settings));
+        cranePartsOnSite(
+            b, pose_b, stateFromForecastPayload(b, pose_b, now_b, path_b.payload[best]), settings));
     out.valid = true;
     if (c.distance < out.closest.distance) {
       out.closest = c;

@@ -107,10 +107,11 @@ Trajectory readTrajectory(const std::string& series_csv, const std::string& node
   return tr;
 }
 
-std::vector<Eigen::Vector3d> resampleRope(const std::vector<Eigen::Vector3d>& nodes, std::size_t n) {
+std::vector<Eigen::Vector3d> resampleRope(const std::vector<Eigen::Vector3d>& nodes,
+                                          std::size_t n) {
   if (nodes.size() < 2 || n < 2) {
-    throw InputError("a rope needs at least 2 nodes to compare, got " + std::to_string(nodes.size()) +
-                     " and " + std::to_string(n));
+    throw InputError("a rope needs at least 2 nodes to compare, got " +
+                     std::to_string(nodes.size()) + " and " + std::to_string(n));
   }
   std::vector<Eigen::Vector3d> out(n);
   const double last = static_cast<double>(nodes.size() - 1);

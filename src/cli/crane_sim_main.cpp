@@ -1,28 +1,27 @@
 // crane_sim: the command-line tool of docs/cli.md (no ROS). Exit status 0 on success, 2 on bad
 // input (message on stderr), 1 on a numerical failure.
-#include <CLI/CLI.hpp>
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
-#include <fstream>
-#include <map>
-
 #include <cstdio>
+#include <fstream>
 #include <iostream>
+#include <map>
 #include <string>
 #include <vector>
 
-#include "crane_twin/io/config_reader.hpp"
-#include "crane_twin/simulation/crane_model.hpp"
-#include "crane_twin/structure/modal_analysis.hpp"
-#include "crane_twin/simulation/crane_simulation.hpp"
-#include "crane_twin/simulation/pendulum_crane_simulation.hpp"
-#include "crane_twin/simulation/invariant_reduced_simulation.hpp"
-#include "crane_twin/simulation/reduced_crane_simulation.hpp"
-#include "crane_twin/simulation/simulation.hpp"
 #include "crane_twin/analysis/accuracy_sweep.hpp"
 #include "crane_twin/analysis/trajectory_compare.hpp"
+#include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/simulation/crane_model.hpp"
+#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/simulation/invariant_reduced_simulation.hpp"
+#include "crane_twin/simulation/pendulum_crane_simulation.hpp"
+#include "crane_twin/simulation/simulation.hpp"
+#include "crane_twin/simulation/subdomain_reduced_simulation.hpp"
+#include "crane_twin/structure/modal_analysis.hpp"
 
 namespace ct = crane_twin;
 
@@ -41,7 +40,8 @@ void addSceneArgs(CLI::App* cmd, SceneArgs& a) {
 
 int runInfo(const SceneArgs& a) {
   const ct::CraneModel m = ct::buildCraneModel(ct::loadScene(a.scene, a.sets));
-  std::printf("structure_nodes,%d\n", m.structure ? static_cast<int>(m.structure->nodes.size()) : 0);
+  std::printf("structure_nodes,%d\n",
+              m.structure ? static_cast<int>(m.structure->nodes.size()) : 0);
   std::printf("structure_elements,%d\n",
               m.structure ? static_cast<int>(m.structure->members.size()) : 0);
   std::printf("structure_dofs,%d\n", m.structure ? m.structure->free_dofs : 0);
@@ -63,9 +63,9 @@ int runInfo(const SceneArgs& a) {
   const bool pendulum = sc.rope.model == "pendulum";
   std::printf("integrated_rope_coordinates,%d\n",
               pendulum ? ct::PendulumRope::kDofs + (sc.hasRigging() ? 3 : 0)
-                       : sc.rope.model != "reduced" || sc.hasRigging() ? m.ropeDofs()
-                       : sc.rope.reduction == "subdomains" ? ct::keptRopeModes(m) + 3
-                                                           : ct::invariantRopeCoordinates(m));
+              : sc.rope.model != "reduced" || sc.hasRigging() ? m.ropeDofs()
+              : sc.rope.reduction == "subdomains"             ? ct::keptRopeModes(m) + 3
+                                                              : ct::invariantRopeCoordinates(m));
   // The pendulum is a straight bar: it has no bending whatever rope.bending says.
   std::printf("rope_bending,%s\n", sc.rope.bending && !pendulum ? "on" : "off");
   std::printf("rope_damping_s,%g\n", sc.rope.damping);
@@ -77,7 +77,8 @@ int runInfo(const SceneArgs& a) {
   std::printf("rope_safety_factor,%g\n", sc.rope.safety_factor);
   std::printf("rope_reeving_length_m,%g\n", sc.rope.reeving_length);
   std::printf("hook_rigging_length_m,%g\n", sc.hook_rigging_length);
-  std::printf("structure_geometric_stiffness,%s\n", sc.structure_geometric_stiffness ? "on" : "off");
+  std::printf("structure_geometric_stiffness,%s\n",
+              sc.structure_geometric_stiffness ? "on" : "off");
   std::printf("wind,%s\n", sc.wind ? "on" : "off");
   std::printf("command_entries,%zu\n", sc.commands.size());
   if (m.structure) {
@@ -156,8 +157,9 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
       if (!(v.warnings & bit)) continue;
       if (warned[bit]++ == 0) {
         if (bar) std::fprintf(stderr, "\n");
-        std::fprintf(stderr, "warning: t = %.3f s: %s (tension_ratio %.3f, load_chart_ratio %.3f)\n",
-                     v.t, ct::warningName(bit), v.tension_ratio, v.load_chart_ratio);
+        std::fprintf(stderr,
+                     "warning: t = %.3f s: %s (tension_ratio %.3f, load_chart_ratio %.3f)\n", v.t,
+                     ct::warningName(bit), v.tension_ratio, v.load_chart_ratio);
       }
     }
   };
@@ -171,8 +173,8 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
       wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (k % every == 0) emit();
       if (bar && (k % std::max(1L, steps / 100) == 0 || k == steps)) {
-        std::fprintf(stderr, "\r[%-50s] %5.1f%%  t = %.2f s", std::string(50 * k / steps, '#').c_str(),
-                     100.0 * k / steps, sim->time());
+        std::fprintf(stderr, "\r[%-50s] %5.1f%%  t = %.2f s",
+                     std::string(50 * k / steps, '#').c_str(), 100.0 * k / steps, sim->time());
       }
     }
   } catch (const ct::NumericalFailure& e) {
@@ -185,8 +187,7 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
     std::fprintf(stderr, "warning: %s in %ld output rows\n", ct::warningName(bit), rows);
   }
   if (sim->halvedSteps() > 0) {
-    std::fprintf(stderr,
-                 "note: halved_steps=%ld (steps where Newton failed at the full size)\n",
+    std::fprintf(stderr, "note: halved_steps=%ld (steps where Newton failed at the full size)\n",
                  sim->halvedSteps());
   }
   const double simS = steps * sc.time_step;
@@ -195,15 +196,16 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   std::string rows_per_bit;
   for (const auto& [bit, rows] : warned) {
     seen |= bit;
-    rows_per_bit += (rows_per_bit.empty() ? "" : ",") + std::to_string(bit) + ":" + std::to_string(rows);
+    rows_per_bit +=
+        (rows_per_bit.empty() ? "" : ",") + std::to_string(bit) + ":" + std::to_string(rows);
   }
-  std::printf("summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=%d mode_updates_s=%.3g "
-              "hand_overs=%ld full_order_steps=%ld warnings_seen=%d warning_rows=%s "
-              "energy_consistent_steps=%ld halved_steps=%ld\n",
-              wall, simS, simS / wall, steps, sim->subdomains(), sim->modeUpdateSeconds(),
-              sim->handOvers(), sim->fullOrderSteps(), seen,
-              rows_per_bit.empty() ? "none" : rows_per_bit.c_str(), sim->energyConsistentSteps(),
-              sim->halvedSteps());
+  std::printf(
+      "summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=%d mode_updates_s=%.3g "
+      "hand_overs=%ld full_order_steps=%ld warnings_seen=%d warning_rows=%s "
+      "energy_consistent_steps=%ld halved_steps=%ld\n",
+      wall, simS, simS / wall, steps, sim->subdomains(), sim->modeUpdateSeconds(), sim->handOvers(),
+      sim->fullOrderSteps(), seen, rows_per_bit.empty() ? "none" : rows_per_bit.c_str(),
+      sim->energyConsistentSteps(), sim->halvedSteps());
   return 0;
 }
 
@@ -244,7 +246,8 @@ int runCompare(const std::string& a, const std::string& b, const std::string& na
   std::printf("payload_error_relative,%.9g\n", m.payload_relative);
   if (m.rope_rms_max >= 0.0) {
     std::printf("rope_rms_max,%.9g\n", m.rope_rms_max);
-    std::printf("rope_rms_relative,%.9g\n", m.rope_length > 0 ? m.rope_rms_max / m.rope_length : 0.0);
+    std::printf("rope_rms_relative,%.9g\n",
+                m.rope_length > 0 ? m.rope_rms_max / m.rope_length : 0.0);
   }
   std::printf("cab_error_max,%.9g\n", m.cab_max);
   std::printf("jib_tip_error_max,%.9g\n", m.jib_tip_max);
@@ -322,8 +325,9 @@ int main(int argc, char** argv) {
   addSceneArgs(sweep, sweepArgs);
   sweep->add_option("--out", sweepOpts.out, "CSV of the results");
   sweep->add_flag("--quick", sweepOpts.quick, "a few settings only");
-  sweep->add_option("--reference-dt", sweepOpts.reference_dt,
-                    "time step of the full-order reference (default: half the scene's)")
+  sweep
+      ->add_option("--reference-dt", sweepOpts.reference_dt,
+                   "time step of the full-order reference (default: half the scene's)")
       ->check(CLI::PositiveNumber);
   sweep->add_option("--interval", sweepOpts.interval, "sampling interval of the comparison [s]")
       ->check(CLI::PositiveNumber);

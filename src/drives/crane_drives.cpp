@@ -16,7 +16,8 @@ bool moves(const CommandEntry& c) {
 CraneDrives::CraneDrives(const Scene& scene, double slew_inertia)
     : scene_(scene), slew_inertia_(slew_inertia) {
   if (scene.slew_drive.model == "torque" && !(slew_inertia > 0.0)) {
-    throw InputError(scene.file + ": key 'slewing.drive.model': the torque drive needs the "
+    throw InputError(scene.file +
+                     ": key 'slewing.drive.model': the torque drive needs the "
                      "rotating part's inertia (a crane structure)");
   }
   for (const auto& c : scene.commands) {
@@ -95,21 +96,6 @@ bool CraneDrives::advance(double t, double dt) {
   trolley_flags_ = trolley_->advance(c.trolley_speed, dt);
   hoist_flags_ = hoist_->advance(c.hoist_speed, dt);
   return true;
-}
-
-void setCraneWarnings(const CraneModel& model, const CraneDrives& drives, SeriesValues& v) {
-  const Scene& sc = model.scene;
-  v.tension_ratio = v.rope_top_tension / model.rope.breaking_force;
-  if (v.tension_ratio > 1.0) v.warnings |= kTensionOverBreakingForce;
-  if (v.tension_ratio * sc.rope.safety_factor > 1.0) v.warnings |= kTensionOverWorkingLoadLimit;
-  if (sc.crane) {
-    v.load_chart_ratio = sc.payload_mass / allowedLoad(*sc.crane, drives.trolleyRadius());
-    if (v.load_chart_ratio > 1.0 + 1e-12) v.warnings |= kOutsideLoadChart;
-  }
-  const DriveFlags &s = drives.slewFlags(), &t = drives.trolleyFlags(), &h = drives.hoistFlags();
-  if (h.at_position_limit) v.warnings |= kRopeLengthAtLimit;
-  if (t.at_position_limit) v.warnings |= kTrolleyAtLimit;
-  if (s.speed_limited || t.speed_limited || h.speed_limited) v.warnings |= kCommandLimited;
 }
 
 }  // namespace crane_twin

@@ -8,13 +8,18 @@ namespace crane_twin {
 
 SlewTorqueDrive::SlewTorqueDrive(double inertia, double max_torque, double stiffness,
                                  double damping, double angle)
-    : inertia_(inertia), max_torque_(max_torque), k_(stiffness), c_(damping), theta_(angle),
+    : inertia_(inertia),
+      max_torque_(max_torque),
+      k_(stiffness),
+      c_(damping),
+      theta_(angle),
       phi_(angle) {
   if (!(std::isfinite(inertia) && inertia > 0.0)) {
     throw std::invalid_argument("slewing drive: inertia must be finite and > 0");
   }
   if (!(max_torque > 0.0)) throw std::invalid_argument("slewing drive: max_torque must be > 0");
-  if (!(std::isfinite(stiffness) && stiffness >= 0.0) || !(std::isfinite(damping) && damping >= 0.0)) {
+  if (!(std::isfinite(stiffness) && stiffness >= 0.0) ||
+      !(std::isfinite(damping) && damping >= 0.0)) {
     throw std::invalid_argument("slewing drive: stiffness and damping must be finite and >= 0");
   }
   if (!std::isfinite(angle)) throw std::invalid_argument("slewing drive: angle must be finite");
@@ -44,8 +49,8 @@ void SlewTorqueDrive::advance(double w_ref, double dt) {
   const double phi1 = phi_ + 0.5 * dt * (w_ref_ + w_ref);
   const double thp = theta_ + dt * rate_ + 0.25 * dt * dt * acc_;
   const double vp = rate_ + 0.5 * dt * acc_;
-  double a1 = (k_ * (phi1 - thp) + c_ * (w_ref - vp)) /
-              (inertia_ + 0.5 * dt * c_ + 0.25 * dt * dt * k_);
+  double a1 =
+      (k_ * (phi1 - thp) + c_ * (w_ref - vp)) / (inertia_ + 0.5 * dt * c_ + 0.25 * dt * dt * k_);
   limited_ = std::abs(a1) > a_max;
   if (limited_) a1 = std::copysign(a_max, a1);
   theta_ = thp + 0.25 * dt * dt * a1;

@@ -71,7 +71,8 @@ CommandEntry TrajectoryFollower::command(double t, const CraneDrives& drives,
     const TrajectoryPoint& p = points_[next_];
     bool done = t - start_ >= p.time_from_start - 1e-12;
     for (int a = 0; a < 3 && done; ++a)
-      if (p.target[a]) done = std::abs(*p.target[a] - x[a]) <= kTolerance[a] && std::abs(v[a]) <= kRestSpeed[a];
+      if (p.target[a])
+        done = std::abs(*p.target[a] - x[a]) <= kTolerance[a] && std::abs(v[a]) <= kRestSpeed[a];
     if (!done) break;
     ++next_;
   }

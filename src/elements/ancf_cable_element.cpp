@@ -1,13 +1,13 @@
 #include "crane_twin/elements/ancf_cable_element.hpp"
 
-#include "crane_twin/elements/discrete_gradient.hpp"
-#include "crane_twin/elements/gauss_legendre.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "crane_twin/elements/discrete_gradient.hpp"
+#include "crane_twin/elements/gauss_legendre.hpp"
 
 namespace crane_twin {
 
@@ -31,8 +31,7 @@ const GaussRule& gaussRule(int n) {
 
 Eigen::Vector4d ancfShape(double xi, double l) {
   const double x2 = xi * xi, x3 = x2 * xi;
-  return {1.0 - 3.0 * x2 + 2.0 * x3, l * (xi - 2.0 * x2 + x3), 3.0 * x2 - 2.0 * x3,
-          l * (x3 - x2)};
+  return {1.0 - 3.0 * x2 + 2.0 * x3, l * (xi - 2.0 * x2 + x3), 3.0 * x2 - 2.0 * x3, l * (x3 - x2)};
 }
 
 Eigen::Vector4d ancfShapeDx(double xi, double l) {
@@ -71,8 +70,8 @@ void addVec(const Eigen::Vector4d& sa, const Eigen::Vector3d& v, double w, Vecto
 // w (sx_i sx_j Paa + sx_i sxx_j Pab + sxx_i sx_j Pab^T + sxx_i sxx_j Pbb), for j >= i only
 // when bending (mirrorUpper completes it; the profiled hot spot was one 3 x 3 update per term
 // and pair).
-void addPoint(const Eigen::Vector4d& sx, const Eigen::Vector4d& sxx,
-              const CablePointDerivatives& d, double w, bool bending, Vector12& Q, Matrix12* K) {
+void addPoint(const Eigen::Vector4d& sx, const Eigen::Vector4d& sxx, const CablePointDerivatives& d,
+              double w, bool bending, Vector12& Q, Matrix12* K) {
   addVec(sx, d.fa, w, Q);
   if (!bending) {
     if (K) addOuter(sx, sx, d.Paa, w, *K);
@@ -90,7 +89,8 @@ void addPoint(const Eigen::Vector4d& sx, const Eigen::Vector4d& sxx,
 // The lower block triangle of K from the upper one.
 void mirrorUpper(Matrix12& K) {
   for (int i = 1; i < 4; ++i)
-    for (int j = 0; j < i; ++j) K.block<3, 3>(3 * i, 3 * j) = K.block<3, 3>(3 * j, 3 * i).transpose();
+    for (int j = 0; j < i; ++j)
+      K.block<3, 3>(3 * i, 3 * j) = K.block<3, 3>(3 * j, 3 * i).transpose();
 }
 
 }  // namespace
@@ -158,7 +158,7 @@ void ancfStrainCurvature(const Vector12& e, double xi, double l, double& eps, do
 }
 
 double ancfCableEnergyDensity(double EA, double EI, const Eigen::Vector3d& a,
-                             const Eigen::Vector3d& b, bool tension_only) {
+                              const Eigen::Vector3d& b, bool tension_only) {
   const double g = a.norm();
   const double kappa = a.cross(b).norm() / (g * g * g);
   return ancfAxialEnergy(EA, g - 1.0, tension_only) + 0.5 * EI * kappa * kappa;
@@ -219,8 +219,7 @@ void ancfCablePoint(double EA, double EI, const Eigen::Vector3d& a, const Eigen:
   d.Pbb = c * fbb * h3;
 }
 
-void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12& Q,
-                      Matrix12* K) {
+void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12& Q, Matrix12* K) {
   const GaussRule& gr = gaussRule(p.gauss_points);
   const Eigen::VectorXd &xg = gr.x, &wg = gr.w;
   Q.setZero();
@@ -282,7 +281,8 @@ void ancfElasticForceDiscreteGradient(const AncfCableProperties& p, const Vector
       }
     }
     // Axial: the secant in s = |a|^2.
-    const SquaredLengthSecant sec = squaredLengthSecant(a0.squaredNorm(), a1.squaredNorm(), W, dW, ddW);
+    const SquaredLengthSecant sec =
+        squaredLengthSecant(a0.squaredNorm(), a1.squaredNorm(), W, dW, ddW);
     d.fa += (2.0 * sec.slope) * am;
     if (K) {
       d.Paa += (2.0 * sec.slope) * Eigen::Matrix3d::Identity() +

@@ -8,10 +8,8 @@ Matrix12d beamGeometricStiffnessLocal(const BeamSection& s, double L, double N) 
   if (!(L > 0.0)) throw std::invalid_argument("beam length must be positive");
   Matrix12d K = Matrix12d::Zero();
   Eigen::Matrix4d B;
-  B << 36, 3 * L, -36, 3 * L,
-       3 * L, 4 * L * L, -3 * L, -L * L,
-       -36, -3 * L, 36, -3 * L,
-       3 * L, -L * L, -3 * L, 4 * L * L;
+  B << 36, 3 * L, -36, 3 * L, 3 * L, 4 * L * L, -3 * L, -L * L, -36, -3 * L, 36, -3 * L, 3 * L,
+      -L * L, -3 * L, 4 * L * L;
   B *= N / (30.0 * L);
   // x-y plane (v = u_y, psi = th_z) and x-z plane (v = u_z, psi = -th_y), as timoshenkoBeamLocal.
   const int xy[4] = {1, 5, 7, 11}, xz[4] = {2, 4, 8, 10};

@@ -62,8 +62,8 @@ namespace {
 
 // In-plane bending matrices for DOFs (v1, psi1, v2, psi2), psi = dv/dx in the Euler-Bernoulli
 // limit, built from the interdependent interpolation with shear parameter Phi.
-void planeBending(double EI, double GAs, double rhoA, double rhoI, double L,
-                  Eigen::Matrix4d& K, Eigen::Matrix4d& M) {
+void planeBending(double EI, double GAs, double rhoA, double rhoI, double L, Eigen::Matrix4d& K,
+                  Eigen::Matrix4d& M) {
   const double Phi = (GAs > 0.0) ? 12.0 * EI / (GAs * L * L) : 0.0;
   const double c = 1.0 / (1.0 + Phi);
   Eigen::VectorXd xg, wg;

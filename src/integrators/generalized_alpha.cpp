@@ -2,8 +2,6 @@
 
 #include <stdexcept>
 
-#include "crane_twin/io/scene.hpp"
-
 namespace crane_twin {
 
 GeneralizedAlpha GeneralizedAlpha::fromRhoInf(double rho) {
@@ -17,10 +15,6 @@ GeneralizedAlpha GeneralizedAlpha::fromRhoInf(double rho) {
 }
 
 GeneralizedAlpha GeneralizedAlpha::newmark() { return GeneralizedAlpha{}; }
-
-GeneralizedAlpha GeneralizedAlpha::forScene(const Scene& sc) {
-  return sc.integrator == "newmark" ? newmark() : fromRhoInf(sc.rho_inf);
-}
 
 void GeneralizedAlpha::predict(double h, const Eigen::VectorXd& xdd, const Eigen::VectorXd& a,
                                Eigen::VectorXd& x, Eigen::VectorXd& xd) const {

@@ -70,8 +70,8 @@ bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSe
   Eigen::VectorXd rz;
   for (int it = 0; it < newton.max_iterations; ++it) {
     if (m > 0) {
-      rz = -bh2 * (support.internalForce(s.z, s.zd, s.zdd) -
-                   support.pointForceToCoordinates(s.lambda));
+      rz = -bh2 *
+           (support.internalForce(s.z, s.zd, s.zdd) - support.pointForceToCoordinates(s.lambda));
       if (support_start_residual) rz -= bh2 * *support_start_residual;
     }
     const Eigen::Vector3d rc =
@@ -96,8 +96,8 @@ bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSe
       return true;
     }
   }
-  why = at + ": Newton did not converge in " + std::to_string(newton.max_iterations) +
-        " iterations";
+  why =
+      at + ": Newton did not converge in " + std::to_string(newton.max_iterations) + " iterations";
   s = start;
   return false;
 }

@@ -186,7 +186,8 @@ double ConfigNode::number(const std::string& key, std::optional<double> def, Bou
 
 int ConfigNode::integer(const std::string& key, std::optional<int> def, int lo, int hi) {
   YAML::Node n = scalarOrNull(key);
-  const std::string range = "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  const std::string range =
+      "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
   if (!n.IsDefined() || n.IsNull()) {
     if (!def) fail(key, "is required (" + range + ")");
     return *def;

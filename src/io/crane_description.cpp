@@ -1,11 +1,10 @@
 #include "crane_twin/io/crane_description.hpp"
 
 #include <algorithm>
-
-#include "crane_twin/io/config_reader.hpp"
-
 #include <cmath>
 #include <utility>
+
+#include "crane_twin/io/config_reader.hpp"
 
 namespace crane_twin {
 
@@ -84,7 +83,8 @@ CraneDescription loadCraneDescription(const std::string& path) {
                                   {"counter_jib", &c.counter_jib}}) {
     if (std::abs(boom->width - c.mast_width) > 1e-9) {
       throw InputError(path + ": key '" + key + ".width': must equal mast.width (" +
-                       std::to_string(c.mast_width) + " m): the boom root sits on the slewing unit");
+                       std::to_string(c.mast_width) +
+                       " m): the boom root sits on the slewing unit");
     }
   }
   for (ConfigNode m : root.mapList("lumped_masses")) {

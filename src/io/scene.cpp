@@ -80,7 +80,8 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     s.structure_geometric_stiffness = n.boolean("geometric_stiffness", false);
     n.finish();
     if (s.structure_geometric_stiffness && s.structure_model == "rigid") {
-      n.fail("geometric_stiffness", "acts on a flexible structure (structure.model: modal or full)");
+      n.fail("geometric_stiffness",
+             "acts on a flexible structure (structure.model: modal or full)");
     }
     if (!s.crane && s.structure_model != "rigid") {
       root.fail("structure.model", "must be rigid with crane: none");
@@ -107,7 +108,8 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     r.damping = n.number("damping", 0.0, Bounds::nonNegative());
     r.mass_per_length = n.number("mass_per_length", def.mass_per_length, Bounds::positive());
     r.axial_stiffness = n.number("axial_stiffness", def.axial_stiffness, Bounds::positive());
-    r.bending_stiffness = n.number("bending_stiffness", def.bending_stiffness, Bounds::nonNegative());
+    r.bending_stiffness =
+        n.number("bending_stiffness", def.bending_stiffness, Bounds::nonNegative());
     r.breaking_force = n.number("breaking_force", def.breaking_force, Bounds::positive());
     r.safety_factor = n.number("safety_factor", 5.0, Bounds::closed(1.0, 100.0));
     r.reeving_length = n.number("reeving_length", 0.0, Bounds::closed(0.0, 5000.0));
@@ -128,7 +130,8 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     s.hook_rigging_length = n.number("rigging_length", 0.0, Bounds::closed(0.0, 100.0));
     n.finish();
     if (s.hook_rigging_length > 0.0 && !(s.hook_mass > 0.0)) {
-      n.fail("mass", "must be > 0 with a rigging_length (the hook block is the rigging's top point)");
+      n.fail("mass",
+             "must be > 0 with a rigging_length (the hook block is the rigging's top point)");
     }
     if (s.hook_rigging_length > 0.0 && !(s.payload_mass > 0.0)) {
       n.fail("rigging_length", "needs payload.mass > 0 (the rigging carries the payload)");
@@ -208,12 +211,14 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     w.in_service_limit = n.number("in_service_limit", 20.0, Bounds::positive());
     n.finish();
     if (!s.crane && s.anchor.z() <= 0.0) {
-      root.fail("wind", "with crane: none the anchor must stand above the ground (z > 0): the "
-                        "wind's profile is measured from z = 0");
+      root.fail("wind",
+                "with crane: none the anchor must stand above the ground (z > 0): the "
+                "wind's profile is measured from z = 0");
     }
     if (s.rope.model == "reduced" && s.rope.reduction == "subdomains") {
-      root.fail("wind", "the subdomain reduced rope (rope.reduction: subdomains) takes no wind; "
-                        "use rope.reduction: invariant, rope.model: full or pendulum");
+      root.fail("wind",
+                "the subdomain reduced rope (rope.reduction: subdomains) takes no wind; "
+                "use rope.reduction: invariant, rope.model: full or pendulum");
     }
     s.wind = w;
   }

@@ -1,11 +1,10 @@
 #include "crane_twin/loads/wind_field.hpp"
 
-#include <unsupported/Eigen/FFT>
-
 #include <cmath>
 #include <complex>
 #include <random>
 #include <stdexcept>
+#include <unsupported/Eigen/FFT>
 
 namespace crane_twin {
 
@@ -34,7 +33,8 @@ WindField::WindField(const WindSettings& s, double jib_height) : s_(s), jib_heig
   e_ = Eigen::Vector3d(std::cos(a), std::sin(a), 0.0);
   if (s.gust_intensity == 0.0 || s.speed == 0.0) return;
   // n(t_j) = sum_k a_k cos(2 pi f_k t_j + phi_k), f_k = k / T, a_k = sqrt(2 S(f_k) df), scaled
-  // so that sum a_k^2 / 2 = 1; by an inverse FFT of the Hermitian spectrum X_k = N/2 a_k e^(i phi_k).
+  // so that sum a_k^2 / 2 = 1; by an inverse FFT of the Hermitian spectrum X_k = N/2 a_k e^(i
+  // phi_k).
   const int N = kGustSamples;
   const double T = N * kGustSampleStep, df = 1.0 / T;
   std::mt19937 gen(static_cast<std::mt19937::result_type>(s.gust_seed));

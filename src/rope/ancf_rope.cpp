@@ -11,8 +11,11 @@ namespace crane_twin {
 AncfRope::AncfRope(int elements, double length, double mass_per_length, double axial_stiffness,
                    double bending_stiffness, double end_mass, const Eigen::Vector3d& gravity,
                    double top_mass)
-    : elements_(elements), end_mass_(end_mass), top_mass_(top_mass),
-      rope_axial_stiffness_(axial_stiffness), gravity_(gravity) {
+    : elements_(elements),
+      end_mass_(end_mass),
+      top_mass_(top_mass),
+      rope_axial_stiffness_(axial_stiffness),
+      gravity_(gravity) {
   if (elements < 1) throw std::invalid_argument("rope needs at least one element");
   if (!(length > 0.0)) throw std::invalid_argument("rope length must be positive");
   element_.length = length / elements;
@@ -47,7 +50,8 @@ void AncfRope::setReevingLength(double equivalent_length) {
 
 double AncfRope::minNodalStrain(const Eigen::VectorXd& q) {
   double least = std::numeric_limits<double>::infinity();
-  for (int j = 0; 6 * j < q.size(); ++j) least = std::min(least, q.segment<3>(6 * j + 3).norm() - 1.0);
+  for (int j = 0; 6 * j < q.size(); ++j)
+    least = std::min(least, q.segment<3>(6 * j + 3).norm() - 1.0);
   return least;
 }
 
@@ -80,8 +84,10 @@ void AncfRope::assembleMass() {
   for (int d = 0; d < 3; ++d) {
     if (top_mass_ != 0.0) fixed.addEntry(d, d, top_mass_);
     // With a rigging the payload is the bar's end mass; the hook block sits on the hook node.
-    if (hasRigging()) fixed.addEntry(6 * elements_ + d, 6 * elements_ + d, hook_mass_);
-    else fixed.addEntry(6 * elements_ + d, 6 * elements_ + d, end_mass_);
+    if (hasRigging())
+      fixed.addEntry(6 * elements_ + d, 6 * elements_ + d, hook_mass_);
+    else
+      fixed.addEntry(6 * elements_ + d, 6 * elements_ + d, end_mass_);
   }
   if (hasRigging()) {
     const std::array<int, 6> r = riggingDofs();
@@ -123,7 +129,8 @@ void AncfRope::updateGravityForce() {
   Fg_.segment<3>(positionIndex(nodes() - 1)) += ext_end_;
 }
 
-void AncfRope::setExternalLoad(const Eigen::Vector3d& per_length, const Eigen::Vector3d& end_force) {
+void AncfRope::setExternalLoad(const Eigen::Vector3d& per_length,
+                               const Eigen::Vector3d& end_force) {
   if (!per_length.allFinite() || !end_force.allFinite()) {
     throw std::invalid_argument("rope external load must be finite");
   }
@@ -196,7 +203,8 @@ double AncfRope::slackSwitchWorkError(const Eigen::VectorXd& q0, const Eigen::Ve
     b1 << q1.segment<3>(n), q1.tail<3>();
     const double T0 = rigging_->tension(b0), T1 = rigging_->tension(b1);
     if (!(T0 > 0.0 && T1 > 0.0)) {
-      const double l0 = (b0.tail<3>() - b0.head<3>()).norm(), l1 = (b1.tail<3>() - b1.head<3>()).norm();
+      const double l0 = (b0.tail<3>() - b0.head<3>()).norm(),
+                   l1 = (b1.tail<3>() - b1.head<3>()).norm();
       err += std::abs(0.5 * (T0 + T1) * (l1 - l0) -
                       (rigging_->elasticEnergy(b1) - rigging_->elasticEnergy(b0)));
     }
@@ -210,8 +218,10 @@ Eigen::VectorXd AncfRope::stretchedStraight(const Eigen::Vector3d& top, const Ei
   // With a rigging: end_force acts at the payload; the rigging's tension grows by its own weight
   // and the hook block's adds at the junction (the field force_per_length / mu per kilogram).
   double hook_force = end_force;
-  const double field = element_.mass_per_length > 0.0 ? force_per_length / element_.mass_per_length : 0.0;
-  if (hasRigging()) hook_force += field * (rigging_->massPerLength() * rigging_->length() + hook_mass_);
+  const double field =
+      element_.mass_per_length > 0.0 ? force_per_length / element_.mass_per_length : 0.0;
+  if (hasRigging())
+    hook_force += field * (rigging_->massPerLength() * rigging_->length() + hook_mass_);
   Eigen::VectorXd q(dofs());
   Eigen::Vector3d r = top;
   for (int j = 0; j <= elements_; ++j) {
@@ -256,9 +266,11 @@ void AncfRope::setRigging(double length, double hook_mass, double mass_per_lengt
   assembleMass();
 }
 
-std::vector<Eigen::Vector3d> AncfRope::sampleCurve(const Eigen::VectorXd& q, int per_element) const {
+std::vector<Eigen::Vector3d> AncfRope::sampleCurve(const Eigen::VectorXd& q,
+                                                   int per_element) const {
   if (!hasRigging()) return sampleRopeCurve(q, element_.length, per_element);
-  std::vector<Eigen::Vector3d> points = sampleRopeCurve(q.head(6 * (elements_ + 1)), element_.length, per_element);
+  std::vector<Eigen::Vector3d> points =
+      sampleRopeCurve(q.head(6 * (elements_ + 1)), element_.length, per_element);
   const Eigen::Vector3d hook = points.back(), load = q.tail<3>();
   for (int i = 1; i <= per_element; ++i) points.push_back(hook + (load - hook) * i / per_element);
   return points;
@@ -270,8 +282,7 @@ std::array<int, 6> AncfRope::riggingDofs() const {
 }
 
 // r(xi) = S(xi) e per element (docs/model.md), xi = k / per_element.
-std::vector<Eigen::Vector3d> sampleRopeCurve(const Eigen::VectorXd& q, double l,
-                                             int per_element) {
+std::vector<Eigen::Vector3d> sampleRopeCurve(const Eigen::VectorXd& q, double l, int per_element) {
   if (per_element < 1) throw std::invalid_argument("rope samples per element must be >= 1");
   const int elements = static_cast<int>(q.size()) / 6 - 1;
   std::vector<Eigen::Vector3d> points;

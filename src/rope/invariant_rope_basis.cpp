@@ -42,7 +42,8 @@ ModalBasis lowestScalarModes(const SparseMatrix& K, const SparseMatrix& M, int c
   }
   const Eigen::MatrixXd Kd(K), Md(M);
   Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(Kd, Md);
-  if (es.info() != Eigen::Success) throw std::runtime_error("reduced rope basis: eigen-solve failed");
+  if (es.info() != Eigen::Success)
+    throw std::runtime_error("reduced rope basis: eigen-solve failed");
   ModalBasis b;
   b.omega2 = es.eigenvalues().head(count);
   b.phi = es.eigenvectors().leftCols(count);
@@ -61,9 +62,8 @@ InvariantRopeBasis::InvariantRopeBasis(const AncfRope& rope, const InvariantBasi
   // gravity the shapes are those of the rope under 9.81 m/s^2 (a basis, not a state: any
   // tension profile gives smooth shapes).
   const double g = rope.gravity().norm() > 0.0 ? rope.gravity().norm() : 9.81;
-  const Eigen::VectorXd q = rope.stretchedStraight(Eigen::Vector3d::Zero(),
-                                                   Eigen::Vector3d(0.0, 0.0, -1.0),
-                                                   g * rope.endMass(), g * mu);
+  const Eigen::VectorXd q = rope.stretchedStraight(
+      Eigen::Vector3d::Zero(), Eigen::Vector3d(0.0, 0.0, -1.0), g * rope.endMass(), g * mu);
   const SparseMatrix K = rope.tangentStiffness(q);
   const SparseMatrix Ms = scalarBlock(rope.massMatrix(), 0);
   const SparseMatrix KT = scalarBlock(K, 0), KA = scalarBlock(K, 2);

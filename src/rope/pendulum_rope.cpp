@@ -1,17 +1,22 @@
 #include "crane_twin/rope/pendulum_rope.hpp"
 
-#include "crane_twin/elements/discrete_gradient.hpp"
-
 #include <cmath>
 #include <stdexcept>
 #include <string>
+
+#include "crane_twin/elements/discrete_gradient.hpp"
 
 namespace crane_twin {
 
 PendulumRope::PendulumRope(double length, double mass_per_length, double axial_stiffness,
                            double end_mass, const Eigen::Vector3d& gravity, double top_mass)
-    : L_(length), mu_(mass_per_length), EA_(axial_stiffness), end_mass_(end_mass),
-      top_mass_(top_mass), rope_axial_stiffness_(axial_stiffness), g_(gravity) {
+    : L_(length),
+      mu_(mass_per_length),
+      EA_(axial_stiffness),
+      end_mass_(end_mass),
+      top_mass_(top_mass),
+      rope_axial_stiffness_(axial_stiffness),
+      g_(gravity) {
   auto require = [](bool ok, const char* what) {
     if (!ok) throw std::invalid_argument(std::string("pendulum rope: ") + what);
   };
@@ -54,7 +59,8 @@ void PendulumRope::updateLoad() {
   Fg_.tail<3>() += 0.5 * L_ * ext_per_length_ + ext_end_;
 }
 
-void PendulumRope::setExternalLoad(const Eigen::Vector3d& per_length, const Eigen::Vector3d& end_force) {
+void PendulumRope::setExternalLoad(const Eigen::Vector3d& per_length,
+                                   const Eigen::Vector3d& end_force) {
   if (!per_length.allFinite() || !end_force.allFinite()) {
     throw std::invalid_argument("pendulum rope: external load must be finite");
   }
@@ -104,12 +110,13 @@ void PendulumRope::discreteGradientForce(const Vector6& q0, const Vector6& q1, V
   };
   const Eigen::Vector3d d0 = q0.tail<3>() - q0.head<3>(), d1 = q1.tail<3>() - q1.head<3>();
   const Eigen::Vector3d dm = 0.5 * (d0 + d1);
-  const SquaredLengthSecant sec = squaredLengthSecant(d0.squaredNorm(), d1.squaredNorm(), W, dW, ddW);
+  const SquaredLengthSecant sec =
+      squaredLengthSecant(d0.squaredNorm(), d1.squaredNorm(), W, dW, ddW);
   Q.head<3>() = -2.0 * sec.slope * dm;
   Q.tail<3>() = 2.0 * sec.slope * dm;
   if (!K) return;
-  const Eigen::Matrix3d Kb = 2.0 * sec.slope * Eigen::Matrix3d::Identity() +
-                             8.0 * sec.curvature * dm * dm.transpose();
+  const Eigen::Matrix3d Kb =
+      2.0 * sec.slope * Eigen::Matrix3d::Identity() + 8.0 * sec.curvature * dm * dm.transpose();
   K->topLeftCorner<3, 3>() = Kb;
   K->bottomRightCorner<3, 3>() = Kb;
   K->topRightCorner<3, 3>() = -Kb;

@@ -79,8 +79,8 @@ RopeModes warmRopeModes(const SparseMatrix& K, const SparseMatrix& M, const Rope
   const int n3 = static_cast<int>(Ki.rows());
   if (previous.phi.rows() != n3 + 3) throw std::invalid_argument("rope modes: size changed");
   // The rope's matrices are banded in their natural node order: no fill-reducing ordering.
-  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt(
-      Ki - s.shift * Mi);
+  Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt(Ki -
+                                                                                      s.shift * Mi);
   if (ldlt.info() != Eigen::Success) throw std::runtime_error("rope modes: singular K - sigma M");
   // Inverse iteration sweeps on the block, one Rayleigh-Ritz step at the end (the block's
   // columns separate by the factors 1/(w_i^2 - sigma) per sweep; two sweeps keep them

@@ -39,9 +39,12 @@ class CraneRecorder {
     std::string compression = "lz4";
     pnh.getParam("compression", compression);
     rosbag::CompressionType type;
-    if (compression == "lz4") type = rosbag::compression::LZ4;
-    else if (compression == "bz2") type = rosbag::compression::BZ2;
-    else if (compression == "none") type = rosbag::compression::Uncompressed;
+    if (compression == "lz4")
+      type = rosbag::compression::LZ4;
+    else if (compression == "bz2")
+      type = rosbag::compression::BZ2;
+    else if (compression == "none")
+      type = rosbag::compression::Uncompressed;
     else
       throw std::invalid_argument("parameter '" + pnh.resolveName("compression") + "' '" +
                                   compression + "': lz4, bz2 or none");
@@ -55,9 +58,9 @@ class CraneRecorder {
           [this, topic](const ros::MessageEvent<topic_tools::ShapeShifter const>& e) {
             write(topic, e);
           };
-      subs_.push_back(nh_.subscribe<topic_tools::ShapeShifter,
-                                    const ros::MessageEvent<topic_tools::ShapeShifter const>&>(
-          topic, 0, cb));
+      subs_.push_back(
+          nh_.subscribe<topic_tools::ShapeShifter,
+                        const ros::MessageEvent<topic_tools::ShapeShifter const>&>(topic, 0, cb));
     }
     timer_ = nh_.createWallTimer(ros::WallDuration(0.01), [this](const ros::WallTimerEvent&) {
       if (changed_) publishProgress();
@@ -79,7 +82,8 @@ class CraneRecorder {
   }
 
  private:
-  void write(const std::string& topic, const ros::MessageEvent<topic_tools::ShapeShifter const>& e) {
+  void write(const std::string& topic,
+             const ros::MessageEvent<topic_tools::ShapeShifter const>& e) {
     // The bag's index time is the receipt time (simulated time under /use_sim_time); before the
     // first /clock that is zero, which a bag cannot hold: such messages are filed at its
     // earliest time, ros::TIME_MIN (1 ns).

@@ -1,6 +1,5 @@
 #include "crane_sim_node.hpp"
 
-#include <Eigen/Geometry>
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <ros/master.h>
 #include <rosbag/bag.h>
@@ -9,6 +8,7 @@
 #include <sensor_msgs/JointState.h>
 #include <std_msgs/Bool.h>
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,10 +18,10 @@
 #include <set>
 #include <sstream>
 
+#include "crane_twin/integrators/numerical_failure.hpp"
 #include "crane_twin/io/config_reader.hpp"
 #include "crane_twin/io/site_description.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
-#include "crane_twin/integrators/numerical_failure.hpp"
 #include "node_params.hpp"
 #include "ros_messages.hpp"
 
@@ -97,8 +97,9 @@ NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
   optionalParam(pnh, "base_pose", s.base_pose, "a list of 4 numbers [x, y, z, yaw]");
   if (!s.base_pose.empty()) {
     if (s.base_pose.size() != 4) {
-      throw InputError("parameter '~base_pose' must be a list of 4 numbers [x, y, z, yaw] (m, rad), got " +
-                       std::to_string(s.base_pose.size()));
+      throw InputError(
+          "parameter '~base_pose' must be a list of 4 numbers [x, y, z, yaw] (m, rad), got " +
+          std::to_string(s.base_pose.size()));
     }
     for (double v : s.base_pose)
       if (!std::isfinite(v)) throw InputError("parameter '~base_pose' must be finite");
@@ -127,19 +128,22 @@ NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
   optionalParam(pnh, "clock_followers", s.clock_followers, "a list of crane/state topic names");
   if (s.follow_clock) {
     if (s.publish_clock) {
-      throw InputError("parameters '~follow_clock' and '~publish_clock' exclude each other: one "
-                       "node owns /clock, the others follow it");
+      throw InputError(
+          "parameters '~follow_clock' and '~publish_clock' exclude each other: one "
+          "node owns /clock, the others follow it");
     }
     if (!ros::Time::isSimTime()) {
-      throw InputError("parameter '~follow_clock' needs /use_sim_time true (set it in the launch "
-                       "file before the nodes start)");
+      throw InputError(
+          "parameter '~follow_clock' needs /use_sim_time true (set it in the launch "
+          "file before the nodes start)");
     }
   } else if (s.real_time_factor == 0.0) {
     s.publish_clock = true;  // docs/ros.md: 0 drives /clock
   }
   if (!s.clock_followers.empty() && !s.publish_clock) {
-    throw InputError("parameter '~clock_followers' needs this node to own /clock "
-                     "(~publish_clock true or ~real_time_factor 0)");
+    throw InputError(
+        "parameter '~clock_followers' needs this node to own /clock "
+        "(~publish_clock true or ~real_time_factor 0)");
   }
   return s;
 }
@@ -167,8 +171,8 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   twin_ = std::make_unique<TwinAdapter>(nh_, settings_.twin, frames_, base, yaw);
   loadReplay();
   resetSimulation();
-  recorder_ = std::make_unique<RecorderLink>(nh_, settings_.wait_for_recorder,
-                                             settings_.recorded_topics);
+  recorder_ =
+      std::make_unique<RecorderLink>(nh_, settings_.wait_for_recorder, settings_.recorded_topics);
   // Queues for bursts: as fast as possible a recorder takes every publication.
   joint_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 1000);
   state_pub_ = nh_.advertise<CraneState>("crane/state", 1000);  // rtf 0: bursts
@@ -191,13 +195,13 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   pause_srv_ = pnh_.advertiseService("pause", &CraneSimNode::onPause, this);
   payload_srv_ = pnh_.advertiseService("set_payload", &CraneSimNode::onSetPayload, this);
   const bool ancf = model_.scene.rope.model != "pendulum";
-  ROS_INFO("crane_sim_node: scene %s, rope model %s%s%s, time step %g s, "
-           "real_time_factor %g%s%s",
-           settings_.scene.c_str(), model_.scene.rope.model.c_str(), ancf ? ", rope elements " : "",
-           ancf ? std::to_string(model_.scene.rope.elements).c_str() : "",
-           model_.scene.time_step, settings_.real_time_factor,
-           settings_.publish_clock ? ", publishing /clock" : "",
-           settings_.command_bag.empty() ? "" : ", replaying commands from a bag");
+  ROS_INFO(
+      "crane_sim_node: scene %s, rope model %s%s%s, time step %g s, "
+      "real_time_factor %g%s%s",
+      settings_.scene.c_str(), model_.scene.rope.model.c_str(), ancf ? ", rope elements " : "",
+      ancf ? std::to_string(model_.scene.rope.elements).c_str() : "", model_.scene.time_step,
+      settings_.real_time_factor, settings_.publish_clock ? ", publishing /clock" : "",
+      settings_.command_bag.empty() ? "" : ", replaying commands from a bag");
 }
 
 // Commands the recorded run applied, by simulated time (crane/command_applied stamps).
@@ -206,8 +210,8 @@ void CraneSimNode::loadReplay() {
   if (settings_.command_bag.empty()) return;
   try {
     rosbag::Bag bag(settings_.command_bag, rosbag::bagmode::Read);
-    rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{
-                               "crane/command_applied", "/crane/command_applied"}));
+    rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{"crane/command_applied",
+                                                                       "/crane/command_applied"}));
     for (const rosbag::MessageInstance& m : view) {
       const CraneCommand::ConstPtr c = m.instantiate<CraneCommand>();
       if (c) replay_all_.push_back({c->header.stamp.toSec(), entryOf(*c)});
@@ -281,7 +285,8 @@ void CraneSimNode::apply(const CommandEntry& c, const char* source) {
 void CraneSimNode::onCommand(const CraneCommand::ConstPtr& msg) {
   if (settings_.twin.measured_input) {
     ++rejected_;
-    warnThrottled("~input measured: the twin follows crane/measured_joint_states; crane/command ignored");
+    warnThrottled(
+        "~input measured: the twin follows crane/measured_joint_states; crane/command ignored");
     return;
   }
   if (!settings_.command_bag.empty()) {
@@ -469,8 +474,8 @@ bool CraneSimNode::onSetPayload(SetPayload::Request& req, SetPayload::Response& 
   }
   ROS_INFO("crane_sim_node: payload set to %g kg at t = %g s", req.mass, t_offset_);
   res.success = true;
-  res.message = "payload " + std::to_string(req.mass) + " kg, in equilibrium at t = " +
-                std::to_string(t_offset_) + " s";
+  res.message = "payload " + std::to_string(req.mass) +
+                " kg, in equilibrium at t = " + std::to_string(t_offset_) + " s";
   publishNow();
   return true;
 }
@@ -557,12 +562,10 @@ void CraneSimNode::publish() {
   recorder_->published(joint_pub_);
   tf_.sendTransform(toTransforms(s, st + tf_stamp_offset_, frames_));
   const double payload_mass = model_.scene.payload_mass;
-  marker_pub_.publish(
-      toMarkers(s, st, loadShapes(s, model_.scene.hookBlockMass(), payload_mass), payload_mass,
-                frames_));
+  marker_pub_.publish(toMarkers(s, st, loadShapes(s, model_.scene.hookBlockMass(), payload_mass),
+                                payload_mass, frames_));
   recorder_->published(marker_pub_);
-  last_state_ =
-      toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model, frames_);
+  last_state_ = toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model, frames_);
   last_state_.t += t_offset_;
   state_pub_.publish(last_state_);
   recorder_->published(state_pub_);
@@ -637,7 +640,8 @@ void CraneSimNode::publishDiagnostics() {
   {
     std::string names;
     for (int bit = 1; bit <= kLastWarning; bit <<= 1)
-      if (warnings_seen_ & bit) names += (names.empty() ? "" : "; ") + std::string(warningName(bit));
+      if (warnings_seen_ & bit)
+        names += (names.empty() ? "" : "; ") + std::string(warningName(bit));
     addKeyValue(d, "warnings_seen_names", names.empty() ? "none" : names);
   }
   addNumber(d, "wind_3s", last_wind_3s_);
@@ -652,8 +656,8 @@ void CraneSimNode::publishDiagnostics() {
 // With f = 0 the node steps from one publication to the next as fast as it can.
 void CraneSimNode::run() {
   const double dt = model_.scene.time_step, period = 1.0 / settings_.publish_rate;
-  const std::vector<const ros::Publisher*> own = {&state_pub_, &joint_pub_, &marker_pub_,
-                                                  &applied_pub_, &diag_pub_, &clock_pub_};
+  const std::vector<const ros::Publisher*> own = {&state_pub_,   &joint_pub_, &marker_pub_,
+                                                  &applied_pub_, &diag_pub_,  &clock_pub_};
   bool awaiting_recorder = recorder_->enabled();
   if (!awaiting_recorder) publish();  // else once the recorder listens: the bag starts at t = 0
   next_publish_ = sim_->time() + period;
@@ -679,8 +683,7 @@ void CraneSimNode::run() {
     if (!running) {
       was_running = false;
       // Paused as in gazebo_ros: the frozen state keeps coming at ~publish_rate of wall time.
-      if (paused_ && !finished_ && !failed_ &&
-          (now - last_paused_publish_).toSec() >= period) {
+      if (paused_ && !finished_ && !failed_ && (now - last_paused_publish_).toSec() >= period) {
         last_paused_publish_ = now;
         publishPaused();
       }
@@ -743,8 +746,8 @@ void CraneSimNode::run() {
       }
       target = std::min(target, paced);
       if (sim_->time() + 0.5 * dt > target) {
-        const double wait = (std::min(next_publish_, sim_->time() + dt) - paced) /
-                            settings_.real_time_factor;
+        const double wait =
+            (std::min(next_publish_, sim_->time() + dt) - paced) / settings_.real_time_factor;
         ros::WallDuration(std::clamp(wait, 1e-4, 0.01)).sleep();
         continue;
       }

@@ -9,8 +9,8 @@
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/static_transform_broadcaster.h>
-#include <trajectory_msgs/JointTrajectory.h>
 #include <tf2_ros/transform_broadcaster.h>
+#include <trajectory_msgs/JointTrajectory.h>
 
 #include <deque>
 #include <memory>
@@ -20,10 +20,10 @@
 
 #include "crane_twin/CraneCommand.h"
 #include "crane_twin/SetPayload.h"
+#include "crane_twin/analysis/crane_snapshot.hpp"
 #include "crane_twin/drives/command_guard.hpp"
 #include "crane_twin/drives/trajectory_follower.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
-#include "crane_twin/analysis/crane_snapshot.hpp"
 #include "crane_twin/simulation/simulation.hpp"
 #include "recorder_link.hpp"
 #include "ros_messages.hpp"
@@ -40,18 +40,18 @@ struct NodeSettings {
   /// Hz of wall time for the deformed structure's marker (thousands of points): when running
   /// faster than real time it would otherwise dominate the publishing (docs/ros.md).
   double structure_marker_rate = 10.0;
-  double command_timeout = 0.5;        ///< s of simulated time, 0: never
-  bool publish_clock = false;          ///< forced on when real_time_factor is 0
+  double command_timeout = 0.5;  ///< s of simulated time, 0: never
+  bool publish_clock = false;    ///< forced on when real_time_factor is 0
   /// Step to keep up with /clock (another node owns it, docs/site.md) instead of the wall
   /// clock; needs use_sim_time, excludes publish_clock, ignores real_time_factor.
   bool follow_clock = false;
   /// The owner of /clock does not run ahead of these followers (their crane/state topics) by
   /// more than 2.5 publication periods, so a site at real_time_factor 0 stays in lockstep.
   std::vector<std::string> clock_followers;
-  double duration = -1.0;              ///< s; < 0: the scene's; 0: run until shut down
+  double duration = -1.0;  ///< s; < 0: the scene's; 0: run until shut down
   bool shutdown_at_end = false;
-  bool start_paused = false;           ///< wait for ~pause false before the first step
-  std::string command_bag;             ///< replay crane/command_applied from this bag
+  bool start_paused = false;  ///< wait for ~pause false before the first step
+  std::string command_bag;    ///< replay crane/command_applied from this bag
   /// Hold the first step until this node (a recorder, resolved in the node's namespace)
   /// subscribes to every topic of recorded_topics, so a recording starts at t = 0; pace the run
   /// to it when it reports its progress (crane_recorder, RecorderLink).
@@ -109,8 +109,8 @@ class CraneSimNode {
   /// Publish at once and start the next publication period (after ~reset, ~set_payload).
   void publishNow();
   void publishGoalReached(bool reached);
-  ros::WallTime last_state_wall_;   ///< when it was last (re)published
-  ros::WallTime last_clock_wall_;   ///< when /clock was last repeated while waiting (lockstep)
+  ros::WallTime last_state_wall_;  ///< when it was last (re)published
+  ros::WallTime last_clock_wall_;  ///< when /clock was last repeated while waiting (lockstep)
   ros::Publisher joint_pub_, state_pub_, marker_pub_, clock_pub_, diag_pub_, applied_pub_;
   ros::ServiceServer reset_srv_, pause_srv_, payload_srv_;
   /// Simulated time before the current simulation started [s] (a load change runs time on).

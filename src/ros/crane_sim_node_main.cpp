@@ -29,7 +29,8 @@ bool startedByRoslaunch() {
   bool roslaunch = false;
   for (size_t i = 0; i < args.size() && i < 2; ++i) {
     const std::string& a = args[i];
-    roslaunch |= a == "roslaunch" || (a.size() > 10 && a.compare(a.size() - 10, 10, "/roslaunch") == 0);
+    roslaunch |=
+        a == "roslaunch" || (a.size() > 10 && a.compare(a.size() - 10, 10, "/roslaunch") == 0);
   }
   for (const std::string& a : args) roslaunch &= a != "--child";
   return roslaunch;

@@ -29,7 +29,8 @@ class RecorderLink {
   RecorderLink() = default;
   /// recorder: a node name resolved in nh's namespace ("" = no recording); topics: the topics it
   /// records (resolved in nh's namespace).
-  RecorderLink(ros::NodeHandle nh, const std::string& recorder, const std::vector<std::string>& topics);
+  RecorderLink(ros::NodeHandle nh, const std::string& recorder,
+               const std::vector<std::string>& topics);
 
   bool enabled() const { return !recorder_.empty(); }
   /// Polled before the first step: true once the recorder listens on every recorded topic and

@@ -70,7 +70,8 @@ geometry_msgs::Pose pose(const FramePose& p) {
 
 }  // namespace
 
-void addKeyValue(diagnostic_msgs::DiagnosticStatus& d, const std::string& key, const std::string& value) {
+void addKeyValue(diagnostic_msgs::DiagnosticStatus& d, const std::string& key,
+                 const std::string& value) {
   diagnostic_msgs::KeyValue x;
   x.key = key;
   x.value = value;
@@ -164,8 +165,7 @@ visualization_msgs::MarkerArray toMarkers(const CraneSnapshot& s, const ros::Tim
 }
 
 CraneState toStateMessage(const CraneSnapshot& s, const ros::Time& stamp, double step_cost,
-                          double real_time_factor, const std::string& model,
-                          const CraneFrames& f) {
+                          double real_time_factor, const std::string& model, const CraneFrames& f) {
   const SeriesValues& v = s.series;
   CraneState m;
   m.header.stamp = stamp;

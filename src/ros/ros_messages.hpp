@@ -21,7 +21,8 @@ Eigen::Vector3d fromMsg(const geometry_msgs::Point& p);
 Eigen::Vector3d fromMsg(const geometry_msgs::Vector3& v);
 
 /// A key-value pair of a diagnostic status; numbers as std::ostream writes them.
-void addKeyValue(diagnostic_msgs::DiagnosticStatus& d, const std::string& key, const std::string& value);
+void addKeyValue(diagnostic_msgs::DiagnosticStatus& d, const std::string& key,
+                 const std::string& value);
 void addNumber(diagnostic_msgs::DiagnosticStatus& d, const std::string& key, double value);
 
 /// Joint names the node publishes and the URDF declares.

@@ -41,7 +41,8 @@ class SiteMonitor {
     for (const SiteCrane& c : site.cranes) {
       const Scene scene = loadScene(c.scene, c.overrides);
       if (!scene.crane) {
-        throw InputError(site.file + ": crane '" + c.name + "': its scene has no crane (crane: none)");
+        throw InputError(site.file + ": crane '" + c.name +
+                         "': its scene has no crane (crane: none)");
       }
       auto m = std::make_unique<MonitoredCrane>();
       m->site = c;
@@ -68,8 +69,8 @@ class SiteMonitor {
     diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 5);
     timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / site.rate),
                                  [this](const ros::WallTimerEvent&) { update(); });
-    ROS_INFO("site_monitor: %zu cranes from %s, warn under %g m, error under %g m",
-             cranes_.size(), site.file.c_str(), site.warn_distance, site.error_distance);
+    ROS_INFO("site_monitor: %zu cranes from %s, warn under %g m, error under %g m", cranes_.size(),
+             site.file.c_str(), site.warn_distance, site.error_distance);
   }
 
  private:
@@ -104,8 +105,8 @@ class SiteMonitor {
         d.hardware_id = site_.file;
         if (!a.state || !b.state) {
           d.level = diagnostic_msgs::DiagnosticStatus::STALE;
-          d.message = "waiting for " + std::string(!a.state ? a.site.name : b.site.name) +
-                      "/crane/state";
+          d.message =
+              "waiting for " + std::string(!a.state ? a.site.name : b.site.name) + "/crane/state";
           diag.status.push_back(d);
           continue;
         }
@@ -114,7 +115,7 @@ class SiteMonitor {
             clearanceLevel(p.distance, site_.warn_distance, site_.error_distance);
         SiteClearance m;
         m.header.stamp = a.state->header.stamp > b.state->header.stamp ? a.state->header.stamp
-                                                                         : b.state->header.stamp;
+                                                                       : b.state->header.stamp;
         m.header.frame_id = "world";
         m.crane_a = a.site.name;
         m.crane_b = b.site.name;
@@ -129,8 +130,8 @@ class SiteMonitor {
         if (a.forecast && b.forecast) {
           // Samples of the two paths within half a second of each other count as one instant.
           f = forecastClearance(a.description, a.pose, clearanceState(a), *a.forecast,
-                                b.description, b.pose, clearanceState(b), *b.forecast,
-                                settings(), 0.5);
+                                b.description, b.pose, clearanceState(b), *b.forecast, settings(),
+                                0.5);
         }
         m.forecast_valid = f.valid;
         if (f.valid) {
@@ -145,8 +146,7 @@ class SiteMonitor {
 
         char text[160];
         std::snprintf(text, sizeof text, "%.2f m between %s's %s and %s's %s", p.distance,
-                      a.site.name.c_str(), p.part_a.c_str(), b.site.name.c_str(),
-                      p.part_b.c_str());
+                      a.site.name.c_str(), p.part_a.c_str(), b.site.name.c_str(), p.part_b.c_str());
         d.level = level == ClearanceLevel::kError  ? diagnostic_msgs::DiagnosticStatus::ERROR
                   : level == ClearanceLevel::kWarn ? diagnostic_msgs::DiagnosticStatus::WARN
                                                    : diagnostic_msgs::DiagnosticStatus::OK;
@@ -154,9 +154,9 @@ class SiteMonitor {
         if (f.valid && m.forecast_level > m.level) {  // a predicted approach raises the level
           char predicted[200];
           std::snprintf(predicted, sizeof predicted,
-                        "; predicted %.2f m between %s's %s and %s's %s in %.0f s", f.closest.distance,
-                        a.site.name.c_str(), f.closest.part_a.c_str(), b.site.name.c_str(),
-                        f.closest.part_b.c_str(), m.forecast_time_ahead);
+                        "; predicted %.2f m between %s's %s and %s's %s in %.0f s",
+                        f.closest.distance, a.site.name.c_str(), f.closest.part_a.c_str(),
+                        b.site.name.c_str(), f.closest.part_b.c_str(), m.forecast_time_ahead);
           d.message += predicted;
           d.level = m.forecast_level == 2 ? diagnostic_msgs::DiagnosticStatus::ERROR
                                           : diagnostic_msgs::DiagnosticStatus::WARN;

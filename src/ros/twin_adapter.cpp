@@ -312,13 +312,16 @@ void TwinAdapter::diagnose(const Simulation& sim, diagnostic_msgs::DiagnosticSta
   addKeyValue(d, "input", settings_.measured_input ? "measured" : "commands");
   if (settings_.measured_input) {
     addNumber(d, "joint_input_age_s", follower_.age(t));
-    addKeyValue(d, "joint_input", !follower_.hasSample() ? "none yet" : follower_.stale(t) ? "stale" : "fresh");
+    addKeyValue(d, "joint_input",
+                !follower_.hasSample() ? "none yet"
+                : follower_.stale(t)   ? "stale"
+                                       : "fresh");
     addNumber(d, "joint_samples_refused", static_cast<double>(follower_.refused()));
     if (follower_.stale(t)) warn_level("measured joint input stale or missing");
   }
   const bool closed = t - last_payload_t_ <= settings_.payload_timeout;
-  addKeyValue(d, "sway_estimator", closed ? "closed loop (payload measurements)"
-                              : "open loop (no payload measurement)");
+  addKeyValue(d, "sway_estimator",
+              closed ? "closed loop (payload measurements)" : "open loop (no payload measurement)");
   addNumber(d, "sway_uncertainty_m", estimator_->positionSigma());
   addNumber(d, "structure_modes_estimated", static_cast<double>(modes_.size()));
   addNumber(d, "innovation_m", last_update_.innovation.norm());
@@ -338,7 +341,8 @@ void TwinAdapter::diagnose(const Simulation& sim, diagnostic_msgs::DiagnosticSta
   if (forecaster_) {
     addNumber(d, "forecast_horizon_s", settings_.forecast_horizon);
     addNumber(d, "forecast_cost_s", last_forecast_.wall_seconds);
-    addNumber(d, "forecast_cost_fraction", last_forecast_.wall_seconds / settings_.forecast_horizon);
+    addNumber(d, "forecast_cost_fraction",
+              last_forecast_.wall_seconds / settings_.forecast_horizon);
     addNumber(d, "forecast_max_swing_m", last_forecast_.max_swing);
     addNumber(d, "forecast_max_swing_at_s", last_forecast_.max_swing_time);
   }

@@ -27,14 +27,14 @@ namespace crane_twin {
 
 /// Parameters (private namespace of crane_sim_node; docs/twin.md has the table).
 struct TwinSettings {
-  bool measured_input = false;         ///< ~input: commands | measured
+  bool measured_input = false;  ///< ~input: commands | measured
   JointFollowerSettings follower;
   SwayEstimatorSettings estimator;
-  double payload_timeout = 2.0;        ///< [s] without a payload measurement: open loop
-  double forecast_horizon = 30.0;      ///< [s]
-  double forecast_rate = 1.0;          ///< [Hz of wall time], 0: no forecast
-  double forecast_time_step = 0.01;    ///< [s], 0: the scene's
-  double forecast_sample_period = 0.5; ///< [s] between the path's poses
+  double payload_timeout = 2.0;         ///< [s] without a payload measurement: open loop
+  double forecast_horizon = 30.0;       ///< [s]
+  double forecast_rate = 1.0;           ///< [Hz of wall time], 0: no forecast
+  double forecast_time_step = 0.01;     ///< [s], 0: the scene's
+  double forecast_sample_period = 0.5;  ///< [s] between the path's poses
 };
 
 /// Read and check them. Throws InputError naming the parameter.
@@ -94,10 +94,10 @@ class TwinAdapter {
   ros::Subscriber joint_sub_, payload_sub_, tension_sub_;
   ros::Publisher estimate_pub_, forecast_pub_;
 
-  double last_payload_t_ = -1e300;   ///< twin time of the last payload measurement
+  double last_payload_t_ = -1e300;  ///< twin time of the last payload measurement
   SwayUpdate last_update_;
   long payload_updates_ = 0, payload_refused_ = 0, correction_failures_ = 0;
-  double tension_ratio_ = 1.0;       ///< filtered measured / twin top tension
+  double tension_ratio_ = 1.0;  ///< filtered measured / twin top tension
   bool tension_seen_ = false;
   ros::WallTime last_forecast_wall_, last_warn_wall_;
   PayloadForecast last_forecast_;

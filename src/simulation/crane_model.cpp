@@ -14,14 +14,17 @@ void addGeometricStiffness(CraneModel& m) {
   TowerCraneStructure& st = *m.structure;
   const double g = m.scene.gravity;
   const double hanging = m.hangingPointMass() + m.ropeMass() + m.trolleyMass();
-  const Eigen::VectorXd f = selfWeightLoad(st, g) +
-      st.pointForce(st.trolleyWeights(m.scene.trolley_radius), Eigen::Vector3d(0.0, 0.0, -hanging * g));
+  const Eigen::VectorXd f =
+      selfWeightLoad(st, g) + st.pointForce(st.trolleyWeights(m.scene.trolley_radius),
+                                            Eigen::Vector3d(0.0, 0.0, -hanging * g));
   m.structure_axial_forces = memberAxialForces(st, staticDisplacement(st, f));
   st.K = st.K + geometricStiffness(st, m.structure_axial_forces);
   Eigen::SimplicialLLT<SparseMatrix> llt(st.K);
   if (llt.info() != Eigen::Success) {
-    throw InputError(m.scene.file + ": key 'structure.geometric_stiffness': the structure buckles "
-                     "under its own weight and the hanging load (K + K_G is not positive definite)");
+    throw InputError(
+        m.scene.file +
+        ": key 'structure.geometric_stiffness': the structure buckles "
+        "under its own weight and the hanging load (K + K_G is not positive definite)");
   }
 }
 
@@ -40,6 +43,11 @@ CraneModel buildCraneModel(const Scene& scene) {
   m.hook_mass = scene.hasRigging() ? scene.hookBlockMass() : 0.0;
   if (scene.structure_geometric_stiffness) addGeometricStiffness(m);
   return m;
+}
+
+GeneralizedAlpha integratorFor(const Scene& sc) {
+  return sc.integrator == "newmark" ? GeneralizedAlpha::newmark()
+                                    : GeneralizedAlpha::fromRhoInf(sc.rho_inf);
 }
 
 }  // namespace crane_twin

@@ -13,7 +13,8 @@ namespace {
 // a rope this simulation cannot carry.
 const CraneModel& ancfRopeModel(const CraneModel& m) {
   if (m.scene.rope.model == "pendulum") {
-    throw InputError(m.scene.file + ": key 'rope.model': the ANCF rope cannot run a pendulum "
+    throw InputError(m.scene.file +
+                     ": key 'rope.model': the ANCF rope cannot run a pendulum "
                      "scene (makeSimulation builds PendulumCraneSimulation for it)");
   }
   return m;
@@ -40,8 +41,7 @@ CraneSimulation::CraneSimulation(const CraneModel& m) : SupportedRopeSimulation(
   const CraneModel& model = model_;
   const Scene& sc = model.scene;
   rope_ = std::make_unique<AncfRope>(sceneRope(model));
-  solver_ = std::make_unique<FullOrderSolver>(*rope_, *support_, GeneralizedAlpha::forScene(sc),
-                                              sc.time_step);
+  solver_ = std::make_unique<FullOrderSolver>(*rope_, *support_, integratorFor(sc), sc.time_step);
   solver_->setRopeDamping(sc.rope.damping);
 }
 

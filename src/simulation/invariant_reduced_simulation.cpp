@@ -33,9 +33,8 @@ InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model) 
   const Scene& sc = full_.model().scene;
   // The basis of the rope at its scene length (CraneSimulation built it there).
   basis_ = std::make_unique<InvariantRopeBasis>(full_.rope(), invariantBasisSettings(sc));
-  solver_ = std::make_unique<InvariantReducedSolver>(
-      full_.rope(), *basis_, full_.support(),
-      GeneralizedAlpha::forScene(sc), sc.time_step);
+  solver_ = std::make_unique<InvariantReducedSolver>(full_.rope(), *basis_, full_.support(),
+                                                     integratorFor(sc), sc.time_step);
   solver_->setRopeDamping(sc.rope.damping);
 }
 
@@ -102,10 +101,9 @@ void InvariantReducedSimulation::handOver(const CoupledState& full) {
   ++hand_overs_;
 }
 
-double InvariantReducedSimulation::predictedMinimumTension(double tension, const Eigen::Vector3d& top,
-                                                           const Eigen::Vector3d& end,
-                                                           const Eigen::Vector3d& top_velocity,
-                                                           const Eigen::Vector3d& end_velocity) const {
+double InvariantReducedSimulation::predictedMinimumTension(
+    double tension, const Eigen::Vector3d& top, const Eigen::Vector3d& end,
+    const Eigen::Vector3d& top_velocity, const Eigen::Vector3d& end_velocity) const {
   // The end mass on the rope as a spring-mass pendulum (header): quasi-static tension
   // T_qs = (m_end + mu L) g.d + m_end |v_perp|^2 / l, the axial oscillation's force amplitude
   // sqrt((T - T_qs)^2 + k m_eff v_a^2) with k = EA / L, m_eff = m_end + mu L / 3, v_a the
@@ -134,8 +132,7 @@ double InvariantReducedSimulation::swingEnergy(const CoupledState& f) const {
   const double l = c.norm(), gn = g.norm();
   if (!(l > 0.0) || !(gn > 0.0)) return 0.0;
   const CraneModel& m = full_.model();
-  return (m.end_mass + 0.5 * m.rope.mass_per_length * ropeLength()) * gn *
-         (l - c.dot(g) / gn);
+  return (m.end_mass + 0.5 * m.rope.mass_per_length * ropeLength()) * gn * (l - c.dot(g) / gn);
 }
 
 bool InvariantReducedSimulation::slack(const CoupledState& s, bool check_strain) const {
@@ -145,9 +142,8 @@ bool InvariantReducedSimulation::slack(const CoupledState& s, bool check_strain)
   if (!check_strain) return false;
   if (solver_->minStrain(s.q) < kSlackFraction * end_strain_) return true;
   const int last = full_.ropeNodes() - 1;
-  const double T_min = predictedMinimumTension(
-      T, s.q.head<3>(), solver_->nodePosition(s.q, last), s.v.head<3>(),
-      solver_->nodePosition(s.v, last));
+  const double T_min = predictedMinimumTension(T, s.q.head<3>(), solver_->nodePosition(s.q, last),
+                                               s.v.head<3>(), solver_->nodePosition(s.v, last));
   return T_min < kSnatchTensionFraction * weight_;
 }
 
@@ -181,9 +177,8 @@ bool InvariantReducedSimulation::tryHandBack() {
     if (T < kTautTensionFraction * weight_) return false;
     if (AncfRope::minNodalStrain(f.q) < kTautFraction * end_strain_) return false;
     const int last = 6 * (full_.ropeNodes() - 1);
-    const double T_min = predictedMinimumTension(T, f.q.head<3>(),
-                                                 f.q.segment<3>(last), f.v.head<3>(),
-                                                 f.v.segment<3>(last));
+    const double T_min = predictedMinimumTension(T, f.q.head<3>(), f.q.segment<3>(last),
+                                                 f.v.head<3>(), f.v.segment<3>(last));
     if (T_min < kCalmTensionFraction * weight_) return false;
   }
   const double pe = solver_->projectionError(f.q);
@@ -200,8 +195,8 @@ bool InvariantReducedSimulation::tryHandBack() {
   const CoupledState e = solver_->expand(r);
   const AncfRope& rope = full_.rope();
   const double Tf = rope.kineticEnergyRelativeToTop(f.v), Uf = rope.elasticEnergy(f.q);
-  const double dE = std::abs(Tf - rope.kineticEnergyRelativeToTop(e.v)) +
-                    std::abs(Uf - rope.elasticEnergy(e.q));
+  const double dE =
+      std::abs(Tf - rope.kineticEnergyRelativeToTop(e.v)) + std::abs(Uf - rope.elasticEnergy(e.q));
   if (!(dE < kHandBackEnergy * (Tf + Uf + swingEnergy(f)))) return false;
   const double ind = errorIndicator(e);
   if (!(ind < kHandBackTolerance)) return false;
@@ -285,12 +280,11 @@ SeriesValues InvariantReducedSimulation::series() const {
   // Reduced: from the reduced state (the end node, the Lagrange multiplier's tension and the
   // reduced model's own energy, what its integrator conserves), without expanding the rope.
   const int last = full_.ropeNodes() - 1;
-  SeriesValues v =
-      full_order_ ? full_.series()
-                  : full_.seriesWith(state_, solver_->nodePosition(state_.q, last),
-                                     solver_->nodePosition(state_.v, last),
-                                     solver_->topTension(state_), solver_->energy(state_),
-                                     solver_->length());
+  SeriesValues v = full_order_ ? full_.series()
+                               : full_.seriesWith(state_, solver_->nodePosition(state_.q, last),
+                                                  solver_->nodePosition(state_.v, last),
+                                                  solver_->topTension(state_),
+                                                  solver_->energy(state_), solver_->length());
   v.subdomains = 1;
   v.full_order_steps = full_order_steps_;
   return v;

@@ -3,10 +3,11 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "crane_twin/io/input_error.hpp"
+
 namespace crane_twin {
 
-PendulumCraneSimulation::PendulumCraneSimulation(const CraneModel& m)
-    : SupportedRopeSimulation(m) {
+PendulumCraneSimulation::PendulumCraneSimulation(const CraneModel& m) : SupportedRopeSimulation(m) {
   const Scene& sc = model_.scene;
   // With a rigging the rope's end carries the hook block and the payload hangs on a bar of one
   // fall's wire (docs/model.md "Hook block"), tension-only.
@@ -16,8 +17,7 @@ PendulumCraneSimulation::PendulumCraneSimulation(const CraneModel& m)
                                          model_.gravityVector(), model_.trolleyMass());
   rope_->setTensionOnly(sc.rope.tension_only);
   rope_->setReevingLength(model_.rope.reeving_equivalent_length);
-  solver_ = std::make_unique<PendulumSolver>(*rope_, *support_, GeneralizedAlpha::forScene(sc),
-                                             sc.time_step);
+  solver_ = std::make_unique<PendulumSolver>(*rope_, *support_, integratorFor(sc), sc.time_step);
   solver_->setRopeDamping(sc.rope.damping);
   if (sc.hasRigging()) {
     rigging_ = std::make_unique<PendulumRope>(sc.hook_rigging_length, sc.rope.mass_per_length,
@@ -47,10 +47,24 @@ void PendulumCraneSimulation::initialize() {
 }
 
 void PendulumCraneSimulation::step() {
-  if (advanceDrives(state_.t, solver_->timeStep(), state_.z) && drives_.hoistLength() != rope_->length()) {
+  if (advanceDrives(state_.t, solver_->timeStep(), state_.z) &&
+      drives_.hoistLength() != rope_->length()) {
     rope_->setLength(drives_.hoistLength());
   }
   solver_->step(state_);
+}
+
+void PendulumCraneSimulation::continueFrom(const Simulation& other) {
+  const auto* o = dynamic_cast<const PendulumCraneSimulation*>(&other);
+  if (!o) throw InputError("continueFrom: the other run is not a pendulum rope run");
+  if ((rigging_ == nullptr) != (o->rigging_ == nullptr)) {
+    throw InputError("continueFrom: the other pendulum run has another hook rigging");
+  }
+  continueDrivesFrom(*o);
+  rope_->setLength(o->rope_->length());
+  state_ = o->state_;
+  // The generalized-alpha variables belong to a time step: with another step, restart.
+  if (o->solver_->timeStep() != solver_->timeStep()) solver_->initializeAccelerations(state_);
 }
 
 std::vector<Eigen::Vector3d> PendulumCraneSimulation::ropeCurve(int per_element) const {

@@ -6,7 +6,7 @@
 #include "crane_twin/simulation/crane_simulation.hpp"
 #include "crane_twin/simulation/invariant_reduced_simulation.hpp"
 #include "crane_twin/simulation/pendulum_crane_simulation.hpp"
-#include "crane_twin/simulation/reduced_crane_simulation.hpp"
+#include "crane_twin/simulation/subdomain_reduced_simulation.hpp"
 
 namespace crane_twin {
 
@@ -18,20 +18,29 @@ const char* const kSeriesHeader =
 
 const char* warningName(int bit) {
   switch (bit) {
-    case kTensionOverBreakingForce: return "rope tension over its breaking force";
-    case kOutsideLoadChart: return "load outside the load chart at this radius";
-    case kRopeLengthAtLimit: return "rope length at its limit";
-    case kTrolleyAtLimit: return "trolley at its radius limit";
-    case kCommandLimited: return "command above a drive's speed limit, limited";
-    case kWindOverInServiceLimit: return "3 s mean wind at the jib over the in-service limit";
+    case kTensionOverBreakingForce:
+      return "rope tension over its breaking force";
+    case kOutsideLoadChart:
+      return "load outside the load chart at this radius";
+    case kRopeLengthAtLimit:
+      return "rope length at its limit";
+    case kTrolleyAtLimit:
+      return "trolley at its radius limit";
+    case kCommandLimited:
+      return "command above a drive's speed limit, limited";
+    case kWindOverInServiceLimit:
+      return "3 s mean wind at the jib over the in-service limit";
     case kTensionOverWorkingLoadLimit:
       return "rope tension over its working load limit (breaking force / safety factor)";
-    default: return "unknown warning";
+    default:
+      return "unknown warning";
   }
 }
 
 void writeSeriesRow(std::ostream& out, const SeriesValues& v) {
-  auto put = [&out](const Eigen::Vector3d& x) { out << ',' << x.x() << ',' << x.y() << ',' << x.z(); };
+  auto put = [&out](const Eigen::Vector3d& x) {
+    out << ',' << x.x() << ',' << x.y() << ',' << x.z();
+  };
   out << std::setprecision(10) << v.t;
   put(v.payload);
   put(v.payload_velocity);
@@ -40,7 +49,8 @@ void writeSeriesRow(std::ostream& out, const SeriesValues& v) {
   put(v.trolley);
   out << ',' << v.rope_top_tension << ',' << v.rope_length << ',' << v.slew_angle << ','
       << v.trolley_radius << ',' << v.energy << ',' << v.constraint_error << ',' << v.subdomains
-      << ',' << v.tension_ratio << ',' << v.load_chart_ratio << ',' << v.warnings << ',' << v.full_order_steps << '\n';
+      << ',' << v.tension_ratio << ',' << v.load_chart_ratio << ',' << v.warnings << ','
+      << v.full_order_steps << '\n';
 }
 
 void Simulation::setMeasuredWind(const Eigen::Vector3d&) {
@@ -48,22 +58,24 @@ void Simulation::setMeasuredWind(const Eigen::Vector3d&) {
 }
 
 void Simulation::continueFrom(const Simulation&) {
-  throw InputError("continuing from another run's state (forecasts) needs rope.model full or "
-                   "reduced (rope.reduction: invariant)");
+  throw InputError(
+      "continuing from another run's state (forecasts) needs rope.model full or "
+      "reduced (rope.reduction: invariant)");
 }
 
 void Simulation::setMotion(const CoupledState&) {
-  throw InputError("setting the rope's motion (the twin's sway correction) needs rope.model "
-                   "full or reduced (rope.reduction: invariant)");
+  throw InputError(
+      "setting the rope's motion (the twin's sway correction) needs rope.model "
+      "full or reduced (rope.reduction: invariant)");
 }
 
 void Simulation::checkMotionSizes(const CoupledState& m, const CoupledState& like) {
   if (m.q.size() != like.q.size() || m.v.size() != like.v.size() || m.z.size() != like.z.size() ||
       m.zd.size() != like.zd.size()) {
-    throw std::invalid_argument("setMotion: " + std::to_string(m.q.size()) + " rope and " +
-                                std::to_string(m.z.size()) + " support coordinates, the model has " +
-                                std::to_string(like.q.size()) + " and " +
-                                std::to_string(like.z.size()));
+    throw std::invalid_argument(
+        "setMotion: " + std::to_string(m.q.size()) + " rope and " + std::to_string(m.z.size()) +
+        " support coordinates, the model has " + std::to_string(like.q.size()) + " and " +
+        std::to_string(like.z.size()));
   }
 }
 
@@ -87,9 +99,10 @@ std::unique_ptr<Simulation> makeSimulation(const CraneModel& model) {
   if (sc.rope.model == "full") return std::make_unique<CraneSimulation>(model);
   // The reduced ropes' bases carry no rigging yet: a scene with one runs at full order, the
   // answer the reduced rope must give (docs/model.md "Hook block").
-  if (sc.rope.model == "reduced" && sc.hasRigging()) return std::make_unique<CraneSimulation>(model);
+  if (sc.rope.model == "reduced" && sc.hasRigging())
+    return std::make_unique<CraneSimulation>(model);
   if (sc.rope.model == "reduced" && sc.rope.reduction == "subdomains") {
-    return std::make_unique<ReducedCraneSimulation>(model);
+    return std::make_unique<SubdomainReducedSimulation>(model);
   }
   if (sc.rope.model == "reduced") return std::make_unique<InvariantReducedSimulation>(model);
   if (sc.rope.model == "pendulum") return std::make_unique<PendulumCraneSimulation>(model);

@@ -6,6 +6,7 @@
 #include "crane_twin/io/input_error.hpp"
 #include "crane_twin/loads/wind_loads.hpp"
 #include "crane_twin/rope/swing_direction.hpp"
+#include "crane_twin/simulation/crane_warnings.hpp"
 #include "crane_twin/structure/modal_analysis.hpp"
 #include "crane_twin/structure/structure_support.hpp"
 
@@ -14,9 +15,11 @@ namespace crane_twin {
 std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
   const Scene& sc = model.scene;
   if (sc.slew_inertial_loads && (!model.structure || sc.structure_model == "rigid")) {
-    throw InputError(sc.file + ": key 'slewing.inertial_loads': the inertial loads of slewing act "
-                     "on a flexible structure (structure.model: modal or full); this scene has " +
-                     (model.structure ? std::string("a rigid one") : std::string("none (crane: none)")));
+    throw InputError(
+        sc.file +
+        ": key 'slewing.inertial_loads': the inertial loads of slewing act "
+        "on a flexible structure (structure.model: modal or full); this scene has " +
+        (model.structure ? std::string("a rigid one") : std::string("none (crane: none)")));
   }
   if (!model.structure) return std::make_unique<FixedAnchor>(sc.anchor);
   const TowerCraneStructure& st = *model.structure;
@@ -42,9 +45,8 @@ std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
   // mode gives no second frequency: match at 10 w1 then).
   const double w1 = std::sqrt(b.omega2(0));
   const double wk = b.omega2.size() > 1 ? std::sqrt(b.omega2(b.omega2.size() - 1)) : 10.0 * w1;
-  auto full = std::make_unique<FullStructureSupport>(st, sc.structure_damping_ratio, w1,
-                                                     wk > w1 ? wk : 10.0 * w1, sc.trolley_radius,
-                                                     theta);
+  auto full = std::make_unique<FullStructureSupport>(
+      st, sc.structure_damping_ratio, w1, wk > w1 ? wk : 10.0 * w1, sc.trolley_radius, theta);
   if (sc.slew_inertial_loads) full->enableSlewingLoads();
   return full;
 }
@@ -90,12 +92,14 @@ void SupportedRopeSimulation::setMeasuredWind(const Eigen::Vector3d& v) {
 void SupportedRopeSimulation::updateWind(double t, const Eigen::VectorXd& z, bool record) {
   if (!wind_) return;
   const double top =
-      (z.size() == support_->size() ? support_->point(z) : support_->point(Eigen::VectorXd::Zero(support_->size()))).z();
+      (z.size() == support_->size() ? support_->point(z)
+                                    : support_->point(Eigen::VectorXd::Zero(support_->size())))
+          .z();
   const double L = drives_.hoistLength();
   const Scene& sc = model_.scene;
-  setRopeWind(ropeWindLoad(*wind_, t, top - 0.5 * L, sc.rope.falls,
-                           ropeDiameter(sc.rope.mass_per_length)),
-              payloadWindLoad(*wind_, t, top - L));
+  setRopeWind(
+      ropeWindLoad(*wind_, t, top - 0.5 * L, sc.rope.falls, ropeDiameter(sc.rope.mass_per_length)),
+      payloadWindLoad(*wind_, t, top - L));
   if (model_.structure && support_->size() > 0) {
     const double theta = drives_.slewAngle();
     if (structure_wind_stale_ || theta != wind_theta_) {

@@ -1,14 +1,13 @@
 #include "crane_twin/solvers/full_order_solver.hpp"
 
 #include <Eigen/UmfPackSupport>
+#include <algorithm>
+#include <cmath>
+#include <string>
 
 #include "crane_twin/integrators/numerical_failure.hpp"
 #include "crane_twin/integrators/step_halving.hpp"
 #include "crane_twin/rope/swing_direction.hpp"
-
-#include <algorithm>
-#include <cmath>
-#include <string>
 
 namespace crane_twin {
 
@@ -95,7 +94,8 @@ void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& 
   double* val = A_.valuePtr();
   const int n = rope_.dofs();
   std::fill(val, val + A_.nonZeros(), 0.0);
-  for (std::size_t i = 0; i < mass_index_.size(); ++i) val[mass_index_[i]] += massWeight * mass_value_[i];
+  for (std::size_t i = 0; i < mass_index_.size(); ++i)
+    val[mass_index_[i]] += massWeight * mass_value_[i];
   Q.setZero(n);
   Vector12 Qe;
   Matrix12 Ke;
@@ -103,9 +103,11 @@ void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& 
   for (int k = 0; k < rope_.elements(); ++k, idx += 144) {
     if (from) {
       ancfElasticForceDiscreteGradient(rope_.element(), from->q.segment<12>(6 * k),
-                                       q.segment<12>(6 * k), Qe, stiffWeight != 0.0 ? &Ke : nullptr);
+                                       q.segment<12>(6 * k), Qe,
+                                       stiffWeight != 0.0 ? &Ke : nullptr);
     } else {
-      ancfElasticForce(rope_.element(), q.segment<12>(6 * k), Qe, stiffWeight != 0.0 ? &Ke : nullptr);
+      ancfElasticForce(rope_.element(), q.segment<12>(6 * k), Qe,
+                       stiffWeight != 0.0 ? &Ke : nullptr);
     }
     Q.segment<12>(6 * k) += Qe;
     if (stiffWeight != 0.0) {
@@ -186,7 +188,8 @@ CoupledState FullOrderSolver::solveStatic(const Eigen::VectorXd& q_guess,
     Eigen::VectorXd rq = -(Q - F);
     rq.head<3>() -= s.lambda;
     Eigen::VectorXd rz;
-    if (m > 0) rz = -(support_.internalForce(s.z, s.zd, s.zdd) - support_.pointForceToCoordinates(s.lambda));
+    if (m > 0)
+      rz = -(support_.internalForce(s.z, s.zd, s.zdd) - support_.pointForceToCoordinates(s.lambda));
     const Eigen::Vector3d rc = -(s.q.head<3>() - support_.point(s.z));
     const Eigen::VectorXd rhs = condensedRhs(rq, rz, rc, Azr);
     lu.compute(A_);
@@ -199,7 +202,8 @@ CoupledState FullOrderSolver::solveStatic(const Eigen::VectorXd& q_guess,
     s.q += scale * dx.head(n);
     s.lambda += scale * dx.tail<3>();
     if (m > 0) s.z += scale * (Azr + support_.solvePointForce(dx.tail<3>()));
-    if (!s.q.allFinite() || !s.z.allFinite()) throw NumericalFailure("static solve: non-finite state");
+    if (!s.q.allFinite() || !s.z.allFinite())
+      throw NumericalFailure("static solve: non-finite state");
     if (scale == 1.0 && dmax < 1e-11 * std::max(1.0, rope_.length())) return s;
   }
   throw NumericalFailure("static solve did not converge in 50 Newton iterations");
@@ -213,7 +217,8 @@ CoupledState FullOrderSolver::solveSwingEquilibrium(double swing_rad, double az_
   const double W = endW + rope_.element().mass_per_length * rope_.length() * g;
   const Eigen::Vector3d top = support_.point(Eigen::VectorXd::Zero(support_.size()));
   auto chordAngle = [&](const CoupledState& s) {
-    const Eigen::Vector3d c = rope_.position(s.q, rope_.nodes() - 1) - s.q.head<3>();  // the payload
+    const Eigen::Vector3d c =
+        rope_.position(s.q, rope_.nodes() - 1) - s.q.head<3>();  // the payload
     return std::atan2(c.dot(horiz), -c.z());
   };
   // Start from the straight rope stretched by the static tension profile
@@ -221,8 +226,8 @@ CoupledState FullOrderSolver::solveSwingEquilibrium(double swing_rad, double az_
   // tangent definite (an unstressed straight rope can rotate about the anchor at no cost).
   const Eigen::Vector3d d = swingDirection(swing_rad, az_rad);
   const double perLength = (W - endW) / rope_.length();
-  const Eigen::VectorXd guess = rope_.stretchedStraight(top, d, endW / std::cos(swing_rad),
-                                                        perLength / std::cos(swing_rad));
+  const Eigen::VectorXd guess =
+      rope_.stretchedStraight(top, d, endW / std::cos(swing_rad), perLength / std::cos(swing_rad));
   // Closed-form start: a massless rope's chord angle obeys tan(theta) = H / W_end; the rope's
   // own weight adds half its weight.
   double H0 = std::tan(swing_rad) * (endW + 0.5 * (W - endW));
@@ -260,16 +265,17 @@ void FullOrderSolver::initializeAccelerations(CoupledState& s) {
   const Eigen::VectorXd x = ldlt_.solve(rhs);
   storeConsistentAccelerations(support_, x.head(n), x.tail<3>(), Azr, s);
   last_step_length_ = rope_.length();  // a start, not a hoist
-  switching_ = false;                   // consistent accelerations: generalized-alpha's start
+  switching_ = false;                  // consistent accelerations: generalized-alpha's start
 }
 
 // One step of size h_, halved where Newton fails (stepWithHalving).
 void FullOrderSolver::step(CoupledState& s) {
   hoisting_ = rope_.length() != last_step_length_;
   last_step_length_ = rope_.length();
-  stepWithHalving(s, h_, kMaxHalvings,
-                  [this](CoupledState& x, double h, std::string& why) { return tryStep(x, h, why); },
-                  halved_steps_);
+  stepWithHalving(
+      s, h_, kMaxHalvings,
+      [this](CoupledState& x, double h, std::string& why) { return tryStep(x, h, why); },
+      halved_steps_);
 }
 
 double FullOrderSolver::switchTolerance() const {
@@ -288,7 +294,8 @@ double FullOrderSolver::ropeEnergyCreated(const CoupledState& start, const Coupl
     return 0.5 * x.v.dot(M * x.v) + rope_.elasticEnergy(x.q) - F.dot(x.q);
   };
   const Eigen::VectorXd dq = s.q - start.q;
-  double created = ropeEnergy(s) - ropeEnergy(start) + 0.5 * (start.lambda + s.lambda).dot(dq.head<3>());
+  double created =
+      ropeEnergy(s) - ropeEnergy(start) + 0.5 * (start.lambda + s.lambda).dot(dq.head<3>());
   if (rope_damping_ > 0.0) {
     const Eigen::VectorXd qm = 0.5 * (start.q + s.q), vm = 0.5 * (start.v + s.v);
     Vector12 Qd;

@@ -42,9 +42,8 @@ constexpr double kSupportChange = 1e-2;
 
 InvariantReducedSolver::InvariantReducedSolver(const AncfRope& rope,
                                                const InvariantRopeBasis& basis,
-                                               RopeSupport& support,
-                                               const GeneralizedAlpha& scheme, double time_step,
-                                               NewtonSettings newton)
+                                               RopeSupport& support, const GeneralizedAlpha& scheme,
+                                               double time_step, NewtonSettings newton)
     : rope_(rope), basis_(basis), support_(support), ga_(scheme), h_(time_step), newton_(newton) {
   if (!(time_step > 0.0)) throw std::invalid_argument("time step must be positive");
   if (basis.nodes() != rope.nodes()) throw std::invalid_argument("basis and rope differ in nodes");
@@ -80,7 +79,8 @@ InvariantReducedSolver::InvariantReducedSolver(const AncfRope& rope,
   psi_end_ = P.row(N);
   // The rope's own mass in xi-units is mu L times a constant matrix (docs/model.md).
   const double L = rope.length(), mu = rope.element().mass_per_length;
-  mass_hat_ = (InvariantRopeBasis::Projection(basis, rope.massMatrix(), L).scalarMass() - rope.topMass() * psi_top_.transpose() * psi_top_ -
+  mass_hat_ = (InvariantRopeBasis::Projection(basis, rope.massMatrix(), L).scalarMass() -
+               rope.topMass() * psi_top_.transpose() * psi_top_ -
                rope.endMass() * psi_end_.transpose() * psi_end_) /
               (mu * L);
   refreshLength();
@@ -165,8 +165,8 @@ double InvariantReducedSolver::elasticEnergy(const Eigen::VectorXd& y) const {
   const Matrix3X Rxx = A * D2_ / (L_ * L_);
   double U = 0.0;
   for (int g = 0; g < w_.size(); ++g)
-    U += w_(g) * L_ * ancfCableEnergyDensity(EA, EI, Rx.col(g), Rxx.col(g),
-                                             rope_.element().tension_only);
+    U += w_(g) * L_ *
+         ancfCableEnergyDensity(EA, EI, Rx.col(g), Rxx.col(g), rope_.element().tension_only);
   return U;
 }
 
@@ -197,7 +197,7 @@ bool InvariantReducedSolver::factorize(double a, double c, double k, const Eigen
   }
   const Eigen::MatrixXd Kg = D1_ * wt.asDiagonal() * D1_.transpose();
   const Eigen::MatrixXd Ktr = Kg / L_ + (EI / (L_ * L_ * L_)) * Kb_;  // on I - d d^T
-  const Eigen::MatrixXd Kax = (EA / L_) * Ka_;                         // on d d^T
+  const Eigen::MatrixXd Kax = (EA / L_) * Ka_;                        // on d d^T
   const int n = 3 * m_;
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + 3, n + 3);
   for (int i = 0; i < m_; ++i)
@@ -221,7 +221,8 @@ void InvariantReducedSolver::initializeAccelerations(CoupledState& s) {
   const int n = 3 * m_;
   Eigen::VectorXd Azr, rz;
   const Eigen::Matrix3d G = support_.setIterationWeights(1.0, 0.0, 0.0);
-  if (!factorize(1.0, 0.0, 0.0, G, s.q)) throw NumericalFailure("initial accelerations: singular mass");
+  if (!factorize(1.0, 0.0, 0.0, G, s.q))
+    throw NumericalFailure("initial accelerations: singular mass");
   factored_ = false;  // the step's weights differ
   if (support_.size() > 0) rz = -support_.internalForce(s.z, s.zd, s.zdd);
   Eigen::VectorXd rhs(n + 3);
@@ -232,9 +233,10 @@ void InvariantReducedSolver::initializeAccelerations(CoupledState& s) {
 }
 
 void InvariantReducedSolver::step(CoupledState& s) {
-  stepWithHalving(s, h_, kMaxHalvings,
-                  [this](CoupledState& x, double h, std::string& why) { return tryStep(x, h, why); },
-                  halved_steps_);
+  stepWithHalving(
+      s, h_, kMaxHalvings,
+      [this](CoupledState& x, double h, std::string& why) { return tryStep(x, h, why); },
+      halved_steps_);
 }
 
 bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why) {
@@ -246,8 +248,8 @@ bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why
                                       Eigen::Vector3d& dmu, std::string& reason) {
     const bool stale =
         !factored_ || w.mass != fact_a_ || w.damping != fact_c_ || w.stiffness != fact_k_ ||
-        (w.G - fact_G_).norm() > kSupportChange * fact_G_.norm() || std::abs(L_ - fact_L_) > kLengthChange * L_ ||
-        (chord(x.q) - fact_d_).norm() > kChordTurn ||
+        (w.G - fact_G_).norm() > kSupportChange * fact_G_.norm() ||
+        std::abs(L_ - fact_L_) > kLengthChange * L_ || (chord(x.q) - fact_d_).norm() > kChordTurn ||
         (iterations == 0 && last_iterations_ >= kSlowIterations) ||
         (iterations > 0 && iterations % kSlowIterations == 0);
     if (stale && !factorize(w.mass, w.damping, w.stiffness, w.G, x.q)) {
@@ -272,7 +274,8 @@ bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why
 }
 
 const InvariantRopeBasis::Projection& InvariantReducedSolver::projection() const {
-  if (rope_.length() != L_) throw std::logic_error("reduced projection: rope and solver lengths differ");
+  if (rope_.length() != L_)
+    throw std::logic_error("reduced projection: rope and solver lengths differ");
   if (!projection_ || projection_length_ != L_) {
     projection_.emplace(basis_, rope_.massMatrix(), L_);
     projection_length_ = L_;

@@ -33,8 +33,8 @@ PendulumSolver::VectorN PendulumSolver::appliedForce() const {
   return F;
 }
 
-void PendulumSolver::forces(const VectorN& q, const VectorN& v, VectorN& Q, VectorN& Qd,
-                            MatrixN* K, MatrixN* C) const {
+void PendulumSolver::forces(const VectorN& q, const VectorN& v, VectorN& Q, VectorN& Qd, MatrixN* K,
+                            MatrixN* C) const {
   Vector6 Qb, Qdb;
   Matrix6 Kb, Cb;
   Q = Qd = VectorN::Zero(dofs());
@@ -110,7 +110,8 @@ CoupledState PendulumSolver::solveSwingEquilibrium(double swing_rad, double az_r
         h1 = h2;
         e1 = error(h1);
       }
-      if (!(std::abs(e1) < 1e-10)) throw NumericalFailure("swing equilibrium: chord angle not reached");
+      if (!(std::abs(e1) < 1e-10))
+        throw NumericalFailure("swing equilibrium: chord angle not reached");
       H = h1 * horiz - Ph;
     }
   }
@@ -122,7 +123,8 @@ CoupledState PendulumSolver::solveSwingEquilibrium(double swing_rad, double az_r
     // K z = D^T lambda + f_z: the rope's pull and the loads on the structure itself (wind).
     support_.setIterationWeights(0.0, 0.0, 1.0);
     const Eigen::VectorXd zero = Eigen::VectorXd::Zero(m);
-    s.z = support_.solvePointForce(s.lambda) + support_.solve(-support_.internalForce(zero, zero, zero));
+    s.z = support_.solvePointForce(s.lambda) +
+          support_.solve(-support_.internalForce(zero, zero, zero));
   }
   // The support's deflection moves the whole chain with the top point.
   const Eigen::Vector3d shift = support_.point(s.z) - top0;
@@ -156,9 +158,10 @@ void PendulumSolver::initializeAccelerations(CoupledState& s) {
 }
 
 void PendulumSolver::step(CoupledState& s) {
-  stepWithHalving(s, h_, kMaxHalvings,
-                  [this](CoupledState& x, double h, std::string& why) { return tryStep(x, h, why); },
-                  halved_steps_);
+  stepWithHalving(
+      s, h_, kMaxHalvings,
+      [this](CoupledState& x, double h, std::string& why) { return tryStep(x, h, why); },
+      halved_steps_);
 }
 
 bool PendulumSolver::tryStep(CoupledState& s, double h, std::string& why) {
@@ -192,7 +195,8 @@ bool PendulumSolver::tryStep(CoupledState& s, double h, std::string& why) {
 double PendulumSolver::energy(const CoupledState& s) const {
   double U = rope_.elasticEnergy(s.q.head<6>());
   if (rigging_) U += rigging_->elasticEnergy(s.q.tail<6>());
-  return 0.5 * s.v.dot(massMatrix() * s.v) + U - appliedForce().dot(s.q) + support_.energy(s.z, s.zd);
+  return 0.5 * s.v.dot(massMatrix() * s.v) + U - appliedForce().dot(s.q) +
+         support_.energy(s.z, s.zd);
 }
 
 double PendulumSolver::topTension(const CoupledState& s) const {

@@ -1,9 +1,8 @@
 #include "crane_twin/structure/modal_analysis.hpp"
 
-#include <arpack/arpack.hpp>
-
 #include <Eigen/CholmodSupport>
 #include <algorithm>
+#include <arpack/arpack.hpp>
 #include <cmath>
 #include <numeric>
 #include <stdexcept>
@@ -30,8 +29,9 @@ ModalBasis lowestModes(const SparseMatrix& K, const SparseMatrix& M, const Modal
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> solver;
   solver.compute(A);
   if (solver.info() != Eigen::Success) {
-    throw std::runtime_error("lowestModes: CHOLMOD factorisation of K - sigma M failed "
-                             "(K not positive semi-definite or shift too large)");
+    throw std::runtime_error(
+        "lowestModes: CHOLMOD factorisation of K - sigma M failed "
+        "(K not positive semi-definite or shift too large)");
   }
 
   const int ncv = std::min(n, std::max(2 * nev + 1, nev + 20));
@@ -74,10 +74,10 @@ ModalBasis lowestModes(const SparseMatrix& K, const SparseMatrix& M, const Modal
   std::vector<a_int> select(ncv, 1);
   std::vector<double> d(nev);
   std::vector<double> Z(static_cast<std::size_t>(n) * nev);
-  arpack::seupd(1, arpack::howmny::ritz_vectors, select.data(), d.data(), Z.data(), n,
-                opt.shift, arpack::bmat::generalized, n, arpack::which::largest_magnitude, nev,
-                opt.tolerance, resid.data(), ncv, V.data(), n, iparam, ipntr, workd.data(),
-                workl.data(), lworkl, info);
+  arpack::seupd(1, arpack::howmny::ritz_vectors, select.data(), d.data(), Z.data(), n, opt.shift,
+                arpack::bmat::generalized, n, arpack::which::largest_magnitude, nev, opt.tolerance,
+                resid.data(), ncv, V.data(), n, iparam, ipntr, workd.data(), workl.data(), lworkl,
+                info);
   if (info != 0) throw std::runtime_error("ARPACK dseupd failed, info = " + std::to_string(info));
 
   std::vector<int> order(nev);

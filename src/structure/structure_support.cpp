@@ -10,7 +10,7 @@ namespace {
 
 // 3 x N rows with row_d . u = sum_i w_i u_{node_i, d} (translations of the weighted nodes).
 Eigen::Matrix<double, 3, Eigen::Dynamic> pointRows(const TowerCraneStructure& s,
-                                                    const std::vector<NodeLoad>& at) {
+                                                   const std::vector<NodeLoad>& at) {
   Eigen::Matrix<double, 3, Eigen::Dynamic> P = Eigen::MatrixXd::Zero(3, s.free_dofs);
   for (const auto& w : at)
     for (int d = 0; d < 3; ++d) {
@@ -138,8 +138,7 @@ Eigen::VectorXd RigidTrolleySupport::structureDisplacement(const Eigen::VectorXd
 }
 
 ModalStructureSupport::ModalStructureSupport(const TowerCraneStructure& s, const ModalBasis& b,
-                                             double zeta, double trolley_radius,
-                                             double slew_angle)
+                                             double zeta, double trolley_radius, double slew_angle)
     : StructureSupportBase(s, trolley_radius, slew_angle, &b.phi),
       omega2_(b.omega2),
       damping_(2.0 * zeta * b.omega2.cwiseSqrt()),

@@ -34,8 +34,7 @@ void TowerCraneStructure::addMember(int a, int b, int section, const std::string
 }
 
 void TowerCraneStructure::addBoom(const CraneDescription& c, const LatticeBoomSpec& b,
-                                  double direction, const std::string& group,
-                                  int first_section) {
+                                  double direction, const std::string& group, int first_section) {
   // Sections: top chord, bottom chord, diagonal, horizontal.
   const int sTop = first_section, sBot = first_section + 1, sDia = first_section + 2,
             sHor = first_section + 3;
@@ -144,7 +143,8 @@ TowerCraneStructure TowerCraneStructure::build(const CraneDescription& c) {
   });
   for (int q = 0; q < 2; ++q) {
     if ((s.nodes[top[order[q]]] - c.cab_position).norm() < 1e-3) {
-      throw InputError(c.file + ": key 'slewing_unit.cab_position': coincides with the slewing unit");
+      throw InputError(c.file +
+                       ": key 'slewing_unit.cab_position': coincides with the slewing unit");
     }
     s.addMember(top[order[q]], s.cab_node, 3, "cab");
   }
@@ -169,7 +169,8 @@ TowerCraneStructure TowerCraneStructure::build(const CraneDescription& c) {
   for (const auto& m : s.members) parent[findRoot(m.node1)] = findRoot(m.node2);
   for (std::size_t n = 0; n < s.nodes.size(); ++n) {
     if (findRoot(static_cast<int>(n)) != findRoot(corner[0][0])) {
-      throw InputError(c.file + ": the structure is not connected (check that jib.width and "
+      throw InputError(c.file +
+                       ": the structure is not connected (check that jib.width and "
                        "counter_jib.width equal mast.width, so the booms sit on the slewing unit)");
     }
   }

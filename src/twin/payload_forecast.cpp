@@ -27,8 +27,8 @@ PayloadForecaster::PayloadForecaster(const CraneModel& model, double time_step) 
 
 PayloadForecast PayloadForecaster::run(const Simulation& twin, const CommandEntry& command,
                                        double horizon, double sample_period) {
-  return run(twin, [command](double, const CraneDrives&) { return command; }, horizon,
-             sample_period);
+  return run(
+      twin, [command](double, const CraneDrives&) { return command; }, horizon, sample_period);
 }
 
 PayloadForecast PayloadForecaster::run(const Simulation& twin, const CommandSource& source,
@@ -76,8 +76,7 @@ PayloadForecast PayloadForecaster::runPrepared(const CommandSource& source, doub
   } catch (const NumericalFailure&) {
     f.failed = true;
   }
-  f.wall_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+  f.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
   return f;
 }
 

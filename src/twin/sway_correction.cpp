@@ -30,9 +30,8 @@ void rotateRopeAboutTop(Eigen::VectorXd& q, Eigen::VectorXd& v, const Eigen::Vec
   if (!(rho2 > 0.0)) throw std::invalid_argument("rotateRopeAboutTop: rope end at its top");
   const Eigen::Vector3d theta = rho.cross(dp) / rho2;
   const double angle = theta.norm();
-  const Eigen::Matrix3d R =
-      angle > 0.0 ? Eigen::AngleAxisd(angle, theta / angle).toRotationMatrix()
-                  : Eigen::Matrix3d::Identity();
+  const Eigen::Matrix3d R = angle > 0.0 ? Eigen::AngleAxisd(angle, theta / angle).toRotationMatrix()
+                                        : Eigen::Matrix3d::Identity();
   const Eigen::Vector3d v_rel_end = v.segment<3>(3 * end) - v_top;
   const Eigen::Vector3d u = dv - (R - Eigen::Matrix3d::Identity()) * v_rel_end;
   const Eigen::Vector3d rho_new = R * rho;
@@ -76,10 +75,9 @@ void applyTwinCorrection(Simulation& sim, const SwayUpdate& u, const std::vector
       f.v.segment<3>(3 * b) += dv;
     }
   }
-  rotateRopeAboutTop(f.q, f.v,
-                     Eigen::Vector3d(u.position_correction.x(), u.position_correction.y(), 0.0),
-                     Eigen::Vector3d(u.velocity_correction.x(), u.velocity_correction.y(), 0.0),
-                     blocks);
+  rotateRopeAboutTop(
+      f.q, f.v, Eigen::Vector3d(u.position_correction.x(), u.position_correction.y(), 0.0),
+      Eigen::Vector3d(u.velocity_correction.x(), u.velocity_correction.y(), 0.0), blocks);
   sim.setMotion(f);
 }
 
@@ -131,7 +129,8 @@ SwayModel swayModelAt(const Simulation& sim, const SeriesValues& v, const std::v
   m.damping = Eigen::VectorXd::Zero(modes.size());
   if (!modes.empty()) {
     const auto* modal = dynamic_cast<const ModalStructureSupport*>(&sim.support());
-    if (!modal) throw std::invalid_argument("swayModelAt: structure modes without a modal structure");
+    if (!modal)
+      throw std::invalid_argument("swayModelAt: structure modes without a modal structure");
     for (std::size_t k = 0; k < modes.size(); ++k) {
       m.omega2[k] = modal->omega2()[modes[k]];
       m.damping[k] = modal->dampingTerms()[modes[k]];

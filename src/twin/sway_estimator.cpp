@@ -1,10 +1,9 @@
 #include "crane_twin/twin/sway_estimator.hpp"
 
-#include <unsupported/Eigen/MatrixFunctions>
-
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <unsupported/Eigen/MatrixFunctions>
 
 namespace crane_twin {
 
@@ -24,8 +23,7 @@ void SwayEstimatorSettings::check() const {
   positive(gate, "gate");
 }
 
-SwayEstimator::SwayEstimator(const SwayEstimatorSettings& settings,
-                             const Eigen::VectorXd& phi_norm)
+SwayEstimator::SwayEstimator(const SwayEstimatorSettings& settings, const Eigen::VectorXd& phi_norm)
     : settings_(settings), phi_norm_(phi_norm), K_(static_cast<int>(phi_norm.size())) {
   settings_.check();
   for (int k = 0; k < K_; ++k) {
@@ -147,7 +145,7 @@ SwayUpdate SwayEstimator::update(const Eigen::Vector2d& measured, const Eigen::V
     return u;
   }
   refused_in_a_row_ = 0;
-  const Eigen::MatrixXd PHt = P_ * H.transpose();              // n x 2
+  const Eigen::MatrixXd PHt = P_ * H.transpose();                    // n x 2
   const Eigen::MatrixXd K = llt.solve(PHt.transpose()).transpose();  // n x 2
   const Eigen::VectorXd dx = K * u.innovation;
   u.structure_correction = dx.head(K_);

@@ -1,13 +1,14 @@
 // libFuzzer target for the scene loader: any bytes as a scene file must give a Scene
 // or an InputError naming the file and key, never a crash, a hang, another exception type or
 // a Scene holding a non-finite number. Built and run by scripts/fuzz_scene_loader.sh.
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
-#include <unistd.h>
 
 #include "crane_twin/io/config_reader.hpp"
 #include "crane_twin/io/scene.hpp"
@@ -21,18 +22,31 @@ std::string scenePath() {
         std::filesystem::temp_directory_path() / ("crane_twin_fuzz_" + std::to_string(getpid()));
     std::filesystem::create_directories(dir / "scenes");
     std::error_code ec;
-    std::filesystem::create_directory_symlink(CRANE_TWIN_SOURCE_DIR "/config/cranes", dir / "cranes", ec);
+    std::filesystem::create_directory_symlink(CRANE_TWIN_SOURCE_DIR "/config/cranes",
+                                              dir / "cranes", ec);
     return (dir / "scenes" / "fuzz.yaml").string();
   }();
   return path;
 }
 
 bool finite(const crane_twin::Scene& s) {
-  const double v[] = {s.duration, s.time_step, s.output_interval, s.rho_inf, s.rope.length,
-                      s.rope.mode_fraction, s.rope.subdomain_delta, s.rope.damping,
-                      s.rope.mass_per_length, s.rope.axial_stiffness, s.rope.bending_stiffness,
-                      s.payload_mass, s.trolley_radius, s.slew_angle, s.swing_deg,
-                      s.swing_azimuth_deg, s.gravity};
+  const double v[] = {s.duration,
+                      s.time_step,
+                      s.output_interval,
+                      s.rho_inf,
+                      s.rope.length,
+                      s.rope.mode_fraction,
+                      s.rope.subdomain_delta,
+                      s.rope.damping,
+                      s.rope.mass_per_length,
+                      s.rope.axial_stiffness,
+                      s.rope.bending_stiffness,
+                      s.payload_mass,
+                      s.trolley_radius,
+                      s.slew_angle,
+                      s.swing_deg,
+                      s.swing_azimuth_deg,
+                      s.gravity};
   for (double x : v)
     if (!std::isfinite(x)) return false;
   for (const auto& c : s.commands)

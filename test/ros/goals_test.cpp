@@ -5,17 +5,16 @@
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <sensor_msgs/JointState.h>
 #include <std_msgs/Bool.h>
+#include <std_srvs/SetBool.h>
+#include <std_srvs/Trigger.h>
 #include <trajectory_msgs/JointTrajectory.h>
 
 #include <cmath>
 #include <mutex>
 #include <string>
 #include <vector>
-
-#include <sensor_msgs/JointState.h>
-#include <std_srvs/SetBool.h>
-#include <std_srvs/Trigger.h>
 
 #include "crane_twin/CraneCommand.h"
 #include "crane_twin/CraneState.h"
@@ -62,7 +61,12 @@ TEST(Goals, SlewAndRadiusAreReachedWithinLimitsAndTolerance) {
     first = states.size();
   }
   trajectory_pub->publish(goal({"slew", "trolley"}, {{0.3, 70.0}}, {0.0}));
-  ASSERT_TRUE(waitFor([] { std::lock_guard<std::mutex> l(mtx); return goal_true > 0; }, 60.0))
+  ASSERT_TRUE(waitFor(
+      [] {
+        std::lock_guard<std::mutex> l(mtx);
+        return goal_true > 0;
+      },
+      60.0))
       << "goal not reached; at slew " << latest().slew_angle << " rad, radius "
       << latest().trolley_radius << " m";
   const crane_twin::CraneState s = latest();
@@ -76,11 +80,11 @@ TEST(Goals, SlewAndRadiusAreReachedWithinLimitsAndTolerance) {
     max_rate = std::max(max_rate, std::abs(states[k].slew_rate));
     max_speed = std::max(max_speed, std::abs(states[k].trolley_speed));
   }
-  EXPECT_LE(max_slew, 0.3 + 1e-3);       // no overshoot beyond the tolerance
+  EXPECT_LE(max_slew, 0.3 + 1e-3);  // no overshoot beyond the tolerance
   EXPECT_GE(min_radius, 70.0 - 5e-3);
-  EXPECT_LE(max_rate, 0.084 + 1e-9);     // the crane file's limits
+  EXPECT_LE(max_rate, 0.084 + 1e-9);  // the crane file's limits
   EXPECT_LE(max_speed, 1.0 + 1e-9);
-  EXPECT_GT(max_speed, 0.9);             // and it used them
+  EXPECT_GT(max_speed, 0.9);  // and it used them
 }
 
 TEST(Goals, BadTrajectoriesAreRefusedAndARateCommandCancelsAGoal) {
@@ -91,15 +95,20 @@ TEST(Goals, BadTrajectoriesAreRefusedAndARateCommandCancelsAGoal) {
   };
   ASSERT_TRUE(waitFor([&] { return rejectedNow() >= 0; }, 10.0));
   const int r0 = rejectedNow();
-  trajectory_pub->publish(goal({"boom"}, {{1.0}}, {0.0}));                   // unknown joint
-  trajectory_pub->publish(goal({"trolley"}, {{200.0}}, {0.0}));              // beyond the radius
-  trajectory_pub->publish(goal({"slew"}, {{0.1}, {0.2}}, {5.0, 1.0}));       // time goes back
-  trajectory_pub->publish(goal({"slew"}, {{std::nan("")}}, {0.0}));          // not finite
+  trajectory_pub->publish(goal({"boom"}, {{1.0}}, {0.0}));              // unknown joint
+  trajectory_pub->publish(goal({"trolley"}, {{200.0}}, {0.0}));         // beyond the radius
+  trajectory_pub->publish(goal({"slew"}, {{0.1}, {0.2}}, {5.0, 1.0}));  // time goes back
+  trajectory_pub->publish(goal({"slew"}, {{std::nan("")}}, {0.0}));     // not finite
   EXPECT_TRUE(waitFor([&] { return rejectedNow() >= r0 + 4; }, 5.0)) << rejectedNow() - r0;
   EXPECT_EQ(goal_false, before);  // none of them started
   // A goal far away, then a rate command: the trolley stops short of it.
   trajectory_pub->publish(goal({"trolley"}, {{40.0}}, {0.0}));
-  ASSERT_TRUE(waitFor([&] { std::lock_guard<std::mutex> l(mtx); return goal_false > before; }, 5.0));
+  ASSERT_TRUE(waitFor(
+      [&] {
+        std::lock_guard<std::mutex> l(mtx);
+        return goal_false > before;
+      },
+      5.0));
   ros::WallDuration(0.5).sleep();
   crane_twin::CraneCommand stop;
   command_pub->publish(stop);
@@ -136,7 +145,12 @@ TEST(Payload, SetPayloadAndResetChangeTheLoadWithoutARestart) {
   EXPECT_FALSE(sp.response.success);
   EXPECT_NE(sp.response.message.find("stop the drives"), std::string::npos) << sp.response.message;
   command_pub->publish(crane_twin::CraneCommand());
-  ASSERT_TRUE(waitFor([] { const auto s = latest(); return s.trolley_speed == 0.0 && s.slew_rate == 0.0; }, 20.0));
+  ASSERT_TRUE(waitFor(
+      [] {
+        const auto s = latest();
+        return s.trolley_speed == 0.0 && s.slew_rate == 0.0;
+      },
+      20.0));
   // A bad mass is refused and named.
   sp.request.mass = -3.0;
   ASSERT_TRUE(ros::service::call("/crane_sim_node/set_payload", sp));
@@ -174,12 +188,13 @@ TEST(Payload, SetPayloadAndResetChangeTheLoadWithoutARestart) {
   ros::WallDuration(0.5).sleep();
   const double w15 = hangingWeight(1500.0);
   EXPECT_NEAR(effort(), w15, 0.02 * w15);  // the live scene's 2.3 deg release swings
-  EXPECT_LT(latest().t, t_before_reset);  // back to t = 0 (then 0.5 s at 10x)
+  EXPECT_LT(latest().t, t_before_reset);   // back to t = 0 (then 0.5 s at 10x)
   // A bad override: the reset is refused, naming it, and the run goes on.
   ros::param::set("/crane_sim_node/overrides", std::vector<std::string>{"payload.mas=1"});
   ASSERT_TRUE(ros::service::call("/crane_sim_node/reset", reset));
   EXPECT_FALSE(reset.response.success);
-  EXPECT_NE(reset.response.message.find("payload.mas"), std::string::npos) << reset.response.message;
+  EXPECT_NE(reset.response.message.find("payload.mas"), std::string::npos)
+      << reset.response.message;
   const double t0 = latest().t;
   ros::WallDuration(0.5).sleep();
   EXPECT_GT(latest().t, t0);

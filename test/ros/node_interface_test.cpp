@@ -2,7 +2,6 @@
 // against the live T8036 scene at real time: joint names and the rope tension they carry, the
 // TF tree, the markers, bad messages (the node lives on, the state stays finite), a trolley
 // command followed as the drive's limits say, the command timeout, pause and reset.
-#include <Eigen/Geometry>
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <geometry_msgs/Vector3Stamped.h>
 #include <gtest/gtest.h>
@@ -14,6 +13,7 @@
 #include <tf2_ros/transform_listener.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
 #include <mutex>
@@ -52,11 +52,26 @@ size_t stateCount() {
 using crane_twin_test::waitFor;
 
 bool finiteState(const crane_twin::CraneState& s) {
-  const double v[] = {s.t, s.payload.x, s.payload.y, s.payload.z, s.payload_velocity.x,
-                      s.payload_velocity.y, s.payload_velocity.z, s.cab_displacement.x,
-                      s.jib_tip_displacement.z, s.trolley.x, s.rope_top_tension, s.rope_length,
-                      s.slew_angle, s.trolley_radius, s.slew_rate, s.trolley_speed,
-                      s.hoist_speed, s.energy, s.constraint_error, s.tension_ratio};
+  const double v[] = {s.t,
+                      s.payload.x,
+                      s.payload.y,
+                      s.payload.z,
+                      s.payload_velocity.x,
+                      s.payload_velocity.y,
+                      s.payload_velocity.z,
+                      s.cab_displacement.x,
+                      s.jib_tip_displacement.z,
+                      s.trolley.x,
+                      s.rope_top_tension,
+                      s.rope_length,
+                      s.slew_angle,
+                      s.trolley_radius,
+                      s.slew_rate,
+                      s.trolley_speed,
+                      s.hoist_speed,
+                      s.energy,
+                      s.constraint_error,
+                      s.tension_ratio};
   for (double x : v)
     if (!std::isfinite(x)) return false;
   return true;
@@ -80,7 +95,12 @@ void send(double slew, double trolley, double hoist) {
 }  // namespace
 
 TEST(CraneSimNode, PublishesJointsWithTheRopeTension) {
-  ASSERT_TRUE(waitFor([] { std::lock_guard<std::mutex> l(rec->m); return rec->joint_count > 0; }, 60.0));
+  ASSERT_TRUE(waitFor(
+      [] {
+        std::lock_guard<std::mutex> l(rec->m);
+        return rec->joint_count > 0;
+      },
+      60.0));
   std::lock_guard<std::mutex> l(rec->m);
   const sensor_msgs::JointState& j = rec->joints;
   ASSERT_EQ(j.name, (std::vector<std::string>{"slew", "trolley", "hoist"}));
@@ -141,12 +161,14 @@ TEST(CraneSimNode, TfTreeIsComplete) {
 TEST(CraneSimNode, MarkersShowRopePayloadAndStructure) {
   // The structure's marker comes with a publication at most ~structure_marker_rate times per
   // wall second (docs/ros.md): wait for one that carries it.
-  ASSERT_TRUE(waitFor([] {
-    std::lock_guard<std::mutex> l(rec->m);
-    for (const auto& m : rec->markers.markers)
-      if (m.ns == "structure") return true;
-    return false;
-  }, 10.0));
+  ASSERT_TRUE(waitFor(
+      [] {
+        std::lock_guard<std::mutex> l(rec->m);
+        for (const auto& m : rec->markers.markers)
+          if (m.ns == "structure") return true;
+        return false;
+      },
+      10.0));
   std::lock_guard<std::mutex> l(rec->m);
   bool rope = false, payload = false, hook_block = false, structure = false;
   geometry_msgs::Point hook_centre, payload_centre;
@@ -180,13 +202,14 @@ TEST(CraneSimNode, MarkersShowRopePayloadAndStructure) {
   EXPECT_LT(std::hypot(hook_centre.x - end.x, hook_centre.y - end.y, hook_centre.z - end.z), 1.0);
   EXPECT_LT(payload_centre.z, hook_centre.z);
   EXPECT_LT(std::hypot(payload_centre.x - hook_centre.x, payload_centre.y - hook_centre.y,
-                       payload_centre.z - hook_centre.z), 2.0);
+                       payload_centre.z - hook_centre.z),
+            2.0);
 }
 
 TEST(CraneSimNode, BadCommandsAreRejectedAndTheNodeLivesOn) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double inf = std::numeric_limits<double>::infinity();
-  const double bad[][3] = {{nan, 0, 0}, {0, inf, 0}, {0, 0, -inf}, {1e9, 0, 0},
+  const double bad[][3] = {{nan, 0, 0},    {0, inf, 0},  {0, 0, -inf},   {1e9, 0, 0},
                            {0, -1e300, 0}, {0, 0, 50.0}, {nan, nan, nan}};
   for (const auto& b : bad) send(b[0], b[1], b[2]);
   ros::WallDuration(2.0).sleep();
@@ -198,11 +221,14 @@ TEST(CraneSimNode, BadCommandsAreRejectedAndTheNodeLivesOn) {
   EXPECT_EQ(s.trolley_speed, 0.0);
   EXPECT_EQ(s.slew_rate, 0.0);
   EXPECT_NEAR(s.trolley_radius, 80.0, 1e-12);
-  ASSERT_TRUE(waitFor([] {
-    std::lock_guard<std::mutex> l(rec->m);
-    return rec->diag_count > 0 && diagValue(rec->diag, "rejected_commands") != "" &&
-           std::stoi(diagValue(rec->diag, "rejected_commands")) >= 7;
-  }, 5.0)) << "diagnostics do not count the 7 rejected commands";
+  ASSERT_TRUE(waitFor(
+      [] {
+        std::lock_guard<std::mutex> l(rec->m);
+        return rec->diag_count > 0 && diagValue(rec->diag, "rejected_commands") != "" &&
+               std::stoi(diagValue(rec->diag, "rejected_commands")) >= 7;
+      },
+      5.0))
+      << "diagnostics do not count the 7 rejected commands";
 }
 
 TEST(CraneSimNode, TrolleyFollowsTheCommandWithinTheDriveLimits) {
@@ -315,13 +341,17 @@ TEST(CraneSimNode, WindFromTheTopicPushesTheLoadAndWarnsOverTheLimit) {
   const crane_twin::CraneState s1 = latest();
   EXPECT_GT(s1.payload.y - s0.payload.y, 0.1) << "the load did not drift with the wind";
   EXPECT_TRUE(finiteState(s1));
-  EXPECT_TRUE(waitFor([] {
-    std::lock_guard<std::mutex> l(rec->m);
-    const std::string w = diagValue(rec->diag, "wind_3s");
-    return !w.empty() && std::stod(w) > 20.0 &&
-           diagValue(rec->diag, "warnings_seen_names").find("in-service limit") != std::string::npos;
-  }, 5.0)) << "diagnostics: wind_3s " << diagValue(rec->diag, "wind_3s") << ", warnings "
-           << diagValue(rec->diag, "warnings_seen_names");
+  EXPECT_TRUE(waitFor(
+      [] {
+        std::lock_guard<std::mutex> l(rec->m);
+        const std::string w = diagValue(rec->diag, "wind_3s");
+        return !w.empty() && std::stod(w) > 20.0 &&
+               diagValue(rec->diag, "warnings_seen_names").find("in-service limit") !=
+                   std::string::npos;
+      },
+      5.0))
+      << "diagnostics: wind_3s " << diagValue(rec->diag, "wind_3s") << ", warnings "
+      << diagValue(rec->diag, "warnings_seen_names");
 }
 
 int main(int argc, char** argv) {
@@ -330,32 +360,37 @@ int main(int argc, char** argv) {
   ros::NodeHandle nh;
   Recorder r;
   rec = &r;
-  ros::Subscriber a = crane_twin_test::subscribe<crane_twin::CraneState>(nh, "crane/state", 100, [](const crane_twin::CraneState::ConstPtr& m) {
-    std::lock_guard<std::mutex> l(rec->m);
-    rec->states.push_back(*m);
-  });
-  ros::Subscriber b = crane_twin_test::subscribe<sensor_msgs::JointState>(nh, "joint_states", 10, [](const sensor_msgs::JointState::ConstPtr& m) {
-    std::lock_guard<std::mutex> l(rec->m);
-    rec->joints = *m;
-    ++rec->joint_count;
-  });
-  ros::Subscriber c = crane_twin_test::subscribe<visualization_msgs::MarkerArray>(nh, "crane/rope", 2, [](const visualization_msgs::MarkerArray::ConstPtr& m) {
-    std::lock_guard<std::mutex> l(rec->m);
-    rec->markers = *m;
-    ++rec->marker_count;
-  });
-  ros::Subscriber d = crane_twin_test::subscribe<crane_twin::CraneCommand>(nh, "crane/command_applied", 100, [](const crane_twin::CraneCommand::ConstPtr& m) {
-    std::lock_guard<std::mutex> l(rec->m);
-    rec->applied.push_back(*m);
-  });
-  ros::Subscriber e = crane_twin_test::subscribe<diagnostic_msgs::DiagnosticArray>(nh, "/diagnostics", 10, [](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
-    std::lock_guard<std::mutex> l(rec->m);
-    for (const auto& s : m->status)
-      if (s.name == "/crane_sim_node: simulation") {  // named after the node
-        rec->diag = s;
-        ++rec->diag_count;
-      }
-  });
+  ros::Subscriber a = crane_twin_test::subscribe<crane_twin::CraneState>(
+      nh, "crane/state", 100, [](const crane_twin::CraneState::ConstPtr& m) {
+        std::lock_guard<std::mutex> l(rec->m);
+        rec->states.push_back(*m);
+      });
+  ros::Subscriber b = crane_twin_test::subscribe<sensor_msgs::JointState>(
+      nh, "joint_states", 10, [](const sensor_msgs::JointState::ConstPtr& m) {
+        std::lock_guard<std::mutex> l(rec->m);
+        rec->joints = *m;
+        ++rec->joint_count;
+      });
+  ros::Subscriber c = crane_twin_test::subscribe<visualization_msgs::MarkerArray>(
+      nh, "crane/rope", 2, [](const visualization_msgs::MarkerArray::ConstPtr& m) {
+        std::lock_guard<std::mutex> l(rec->m);
+        rec->markers = *m;
+        ++rec->marker_count;
+      });
+  ros::Subscriber d = crane_twin_test::subscribe<crane_twin::CraneCommand>(
+      nh, "crane/command_applied", 100, [](const crane_twin::CraneCommand::ConstPtr& m) {
+        std::lock_guard<std::mutex> l(rec->m);
+        rec->applied.push_back(*m);
+      });
+  ros::Subscriber e = crane_twin_test::subscribe<diagnostic_msgs::DiagnosticArray>(
+      nh, "/diagnostics", 10, [](const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
+        std::lock_guard<std::mutex> l(rec->m);
+        for (const auto& s : m->status)
+          if (s.name == "/crane_sim_node: simulation") {  // named after the node
+            rec->diag = s;
+            ++rec->diag_count;
+          }
+      });
   ros::Publisher p = nh.advertise<crane_twin::CraneCommand>("crane/command", 20);
   command_pub = &p;
   ros::AsyncSpinner spinner(2);

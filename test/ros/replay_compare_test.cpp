@@ -76,16 +76,19 @@ TEST(ReplayMatchesFullOrder, ReducedRunTracksTheRecordedFullOrderRun) {
     max_drive = std::max({max_drive, std::abs(it->second.trolley_radius - ref.trolley_radius),
                           std::abs(it->second.slew_angle - ref.slew_angle)});
   }
-  std::printf("replay: %zu of %zu reference states matched by stamp, max payload error %.3e m "
-              "at t = %.3f s, max drive difference %.3e\n",
-              matched, reference.size(), max_error, t_max, max_drive);
+  std::printf(
+      "replay: %zu of %zu reference states matched by stamp, max payload error %.3e m "
+      "at t = %.3f s, max drive difference %.3e\n",
+      matched, reference.size(), max_error, t_max, max_drive);
   // Nearly every reference state has its live twin (a transport may drop one in a burst).
   EXPECT_GE(matched, 0.95 * static_cast<double>(reference.size()));
   EXPECT_LT(max_drive, 1e-9);
   EXPECT_LE(max_error, payload_bound);
   // The recorded run did move: otherwise this test would prove nothing.
-  EXPECT_GT(std::abs(reference.rbegin()->second.trolley_radius - reference.begin()->second.trolley_radius) +
-                std::abs(reference.rbegin()->second.slew_angle), 1.0);
+  EXPECT_GT(std::abs(reference.rbegin()->second.trolley_radius -
+                     reference.begin()->second.trolley_radius) +
+                std::abs(reference.rbegin()->second.slew_angle),
+            1.0);
 }
 
 int main(int argc, char** argv) {
@@ -94,13 +97,15 @@ int main(int argc, char** argv) {
   ros::NodeHandle nh, pnh("~");
   // Both parameters are required and typed: a bound silently left at a default would make the
   // test pass for the wrong reason.
-  if (!pnh.getParam("reference_bag", reference_bag) || !pnh.getParam("payload_bound", payload_bound) ||
-      !pnh.getParam("live_model", live_model)) {
-    std::fprintf(stderr, "replay_compare_test: ~reference_bag (string), ~payload_bound (double) "
-                         "and ~live_model (full | reduced) are required\n");
+  if (!pnh.getParam("reference_bag", reference_bag) ||
+      !pnh.getParam("payload_bound", payload_bound) || !pnh.getParam("live_model", live_model)) {
+    std::fprintf(stderr,
+                 "replay_compare_test: ~reference_bag (string), ~payload_bound (double) "
+                 "and ~live_model (full | reduced) are required\n");
     return 2;
   }
-  ros::Subscriber sub = crane_twin_test::subscribe<crane_twin::CraneState>(nh, "crane/state", 1000, [](const crane_twin::CraneState::ConstPtr& m) {
+  ros::Subscriber sub = crane_twin_test::subscribe<crane_twin::CraneState>(
+      nh, "crane/state", 1000, [](const crane_twin::CraneState::ConstPtr& m) {
         std::lock_guard<std::mutex> l(mutex);
         live[m->header.stamp.toNSec()] = *m;
       });
@@ -108,6 +113,7 @@ int main(int argc, char** argv) {
   spinner.start();
   // The simulator starts paused: make sure the subscription is connected before running it.
   const ros::WallTime until = ros::WallTime::now() + ros::WallDuration(120.0);
-  while (sub.getNumPublishers() == 0 && ros::WallTime::now() < until) ros::WallDuration(0.05).sleep();
+  while (sub.getNumPublishers() == 0 && ros::WallTime::now() < until)
+    ros::WallDuration(0.05).sleep();
   return RUN_ALL_TESTS();
 }

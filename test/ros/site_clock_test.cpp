@@ -36,7 +36,12 @@ std::vector<std::string> publishersOf(const std::string& topic) {
 }  // namespace
 
 TEST(SiteClock, OneNodeOwnsTheClockAndTheOtherFollowsIt) {
-  ASSERT_TRUE(waitFor([] { std::lock_guard<std::mutex> l(mtx); return clock_s > 20.0; }, 120.0))
+  ASSERT_TRUE(waitFor(
+      [] {
+        std::lock_guard<std::mutex> l(mtx);
+        return clock_s > 20.0;
+      },
+      120.0))
       << "the clock did not pass 20 s";
   EXPECT_EQ(publishersOf("/clock"), std::vector<std::string>{"/crane_a/crane_sim_node"});
   std::lock_guard<std::mutex> l(mtx);

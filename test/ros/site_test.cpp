@@ -37,9 +37,9 @@ using crane_twin_test::waitFor;
 TEST(Site, FramesOfBothCranesStandOnTheSite) {
   tf2_ros::Buffer buffer;
   tf2_ros::TransformListener listener(buffer);
-  for (const char* frame : {"crane_a/base", "crane_a/payload", "crane_a/jib", "crane_b/base",
-                            "crane_b/slewing", "crane_b/trolley", "crane_b/payload",
-                            "crane_b/counter_jib"}) {
+  for (const char* frame :
+       {"crane_a/base", "crane_a/payload", "crane_a/jib", "crane_b/base", "crane_b/slewing",
+        "crane_b/trolley", "crane_b/payload", "crane_b/counter_jib"}) {
     std::string error;
     EXPECT_TRUE(buffer.canTransform("world", frame, ros::Time(0), ros::Duration(20.0), &error))
         << frame << ": " << error;
@@ -52,7 +52,12 @@ TEST(Site, FramesOfBothCranesStandOnTheSite) {
   // crane_b's own trolley point (crane/state, its base frame) carried onto the site by the base
   // pose, p_site = (100, 0, 10) + Rz(180 deg) p: where TF puts crane_b/trolley (the crane barely
   // moves: the latest state and the latest transform are within millimetres).
-  ASSERT_TRUE(waitFor([] { std::lock_guard<std::mutex> l(mtx); return state_b_count > 0; }, 20.0));
+  ASSERT_TRUE(waitFor(
+      [] {
+        std::lock_guard<std::mutex> l(mtx);
+        return state_b_count > 0;
+      },
+      20.0));
   crane_twin::CraneState sb;
   {
     std::lock_guard<std::mutex> l(mtx);
@@ -64,13 +69,19 @@ TEST(Site, FramesOfBothCranesStandOnTheSite) {
   EXPECT_NEAR(tr.transform.translation.y, 0.0 - sb.trolley.y, 0.01);
   EXPECT_NEAR(tr.transform.translation.z, 10.0 + sb.trolley.z, 0.01);
   // Slewed 90 deg, its trolley is at the site's -y, 80 m out.
-  EXPECT_NEAR(std::hypot(tr.transform.translation.x - 100.0, tr.transform.translation.y), 80.0, 1.0);
+  EXPECT_NEAR(std::hypot(tr.transform.translation.x - 100.0, tr.transform.translation.y), 80.0,
+              1.0);
   EXPECT_LT(tr.transform.translation.y, -79.0);
 }
 
 TEST(Site, MonitorWarnsWhenAJibSlewsOverTheOther) {
   // At the start crane_b's jib points away: clearance above the warning distance.
-  ASSERT_TRUE(waitFor([] { std::lock_guard<std::mutex> l(mtx); return clearance_count > 3; }, 30.0));
+  ASSERT_TRUE(waitFor(
+      [] {
+        std::lock_guard<std::mutex> l(mtx);
+        return clearance_count > 3;
+      },
+      30.0));
   {
     std::lock_guard<std::mutex> l(mtx);
     EXPECT_EQ(last_clearance.crane_a, "crane_a");
@@ -80,14 +91,16 @@ TEST(Site, MonitorWarnsWhenAJibSlewsOverTheOther) {
     EXPECT_EQ(last_clearance.header.frame_id, "world");
   }
   // Slew crane_b back towards crane_a at its full rate until the monitor warns.
-  const bool warned = waitFor([] {
-    crane_twin::CraneCommand c;
-    c.header.stamp = ros::Time::now();
-    c.slew_rate = -0.084;
-    command_b->publish(c);
-    std::lock_guard<std::mutex> l(mtx);
-    return last_clearance.level >= 1 && warn_diagnostics > 0;
-  }, 60.0);
+  const bool warned = waitFor(
+      [] {
+        crane_twin::CraneCommand c;
+        c.header.stamp = ros::Time::now();
+        c.slew_rate = -0.084;
+        command_b->publish(c);
+        std::lock_guard<std::mutex> l(mtx);
+        return last_clearance.level >= 1 && warn_diagnostics > 0;
+      },
+      60.0);
   std::lock_guard<std::mutex> l(mtx);
   ASSERT_TRUE(warned) << "least clearance " << least_distance;
   EXPECT_LT(last_clearance.min_distance, 10.0);

@@ -16,8 +16,9 @@
 //                              undeformed slewing coordinates sits on the deformed structure;
 //   hook, payload              in the world frame, z axis up along the rope's sampled segment
 //                              above the point: the payload at the chain's end node, the hook
-//                              block at the hoist rope's end. Without a rigging (hook.rigging_length)
-//                              the model lumps them into one end mass and both frames share it.
+//                              block at the hoist rope's end. Without a rigging
+//                              (hook.rigging_length) the model lumps them into one end mass and
+//                              both frames share it.
 #pragma once
 
 #include <Eigen/Geometry>
@@ -41,17 +42,17 @@ struct FramePose {
 struct CraneSnapshot {
   SeriesValues series;
   // Drive joints: position and speed.
-  double slew_angle = 0.0, slew_rate = 0.0;              ///< rad, rad/s
-  double trolley_radius = 0.0, trolley_speed = 0.0;      ///< m, m/s
-  double rope_length = 0.0, hoist_speed = 0.0;           ///< m, m/s (positive lowers)
+  double slew_angle = 0.0, slew_rate = 0.0;          ///< rad, rad/s
+  double trolley_radius = 0.0, trolley_speed = 0.0;  ///< m, m/s
+  double rope_length = 0.0, hoist_speed = 0.0;       ///< m, m/s (positive lowers)
   bool has_crane = false;
-  FramePose slewing;                    ///< in world
-  FramePose jib_tip, cab, trolley;      ///< in slewing
-  FramePose mast;                       ///< in world (rigid fit, without the slewing turn)
+  FramePose slewing;                         ///< in world
+  FramePose jib_tip, cab, trolley;           ///< in slewing
+  FramePose mast;                            ///< in world (rigid fit, without the slewing turn)
   FramePose slewing_unit, jib, counter_jib;  ///< in slewing (rigid fits of the deformed parts)
-  FramePose hook, payload;              ///< in world
-  std::vector<Eigen::Vector3d> rope_curve;           ///< world, top to end
-  std::vector<Eigen::Vector3d> structure_segments;   ///< world, pairs (member ends)
+  FramePose hook, payload;                   ///< in world
+  std::vector<Eigen::Vector3d> rope_curve;   ///< world, top to end
+  std::vector<Eigen::Vector3d> structure_segments;  ///< world, pairs (member ends)
 };
 
 /// Rigid motion T (x -> R x + t) that best maps the undeformed points onto the deformed ones in

@@ -15,8 +15,8 @@
 namespace crane_twin {
 
 struct LoadBox {
-  FramePose pose;                                   ///< box centre, world frame
-  Eigen::Vector3d size = Eigen::Vector3d::Zero();   ///< edge lengths along the pose's axes [m]
+  FramePose pose;                                  ///< box centre, world frame
+  Eigen::Vector3d size = Eigen::Vector3d::Zero();  ///< edge lengths along the pose's axes [m]
 };
 
 struct LoadShapes {

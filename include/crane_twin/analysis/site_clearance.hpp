@@ -31,10 +31,10 @@ struct CranePart {
 
 /// What the clearance needs of a crane's state, in the crane's own frame (CraneState).
 struct CraneClearanceState {
-  double slew_angle = 0.0;                                      ///< [rad]
+  double slew_angle = 0.0;                                         ///< [rad]
   Eigen::Vector3d jib_tip_displacement = Eigen::Vector3d::Zero();  ///< slewing frame [m]
-  Eigen::Vector3d trolley = Eigen::Vector3d::Zero();            ///< the rope's top [m]
-  Eigen::Vector3d payload = Eigen::Vector3d::Zero();            ///< [m]
+  Eigen::Vector3d trolley = Eigen::Vector3d::Zero();               ///< the rope's top [m]
+  Eigen::Vector3d payload = Eigen::Vector3d::Zero();               ///< [m]
 };
 
 struct ClearanceSettings {
@@ -82,7 +82,7 @@ CraneClearanceState stateFromForecastPayload(const CraneDescription& crane, cons
 struct ForecastClearance {
   bool valid = false;  ///< the two paths share no instant (within max_gap)
   PartClearance closest;
-  double t = 0.0;      ///< when (a's path time) [s]
+  double t = 0.0;  ///< when (a's path time) [s]
 };
 
 /// The smallest clearance over two cranes' forecasts: at each instant of a's path with a

@@ -14,9 +14,9 @@ namespace crane_twin {
 struct Trajectory {
   std::vector<double> t;
   std::vector<Eigen::Vector3d> payload, cab, jib_tip;
-  std::vector<double> tension;                       ///< rope top tension [N]
+  std::vector<double> tension;                      ///< rope top tension [N]
   std::vector<std::vector<Eigen::Vector3d>> nodes;  ///< per output time, every rope node
-  double rope_length = 0.0;                          ///< hanging length at t = 0 [m]
+  double rope_length = 0.0;                         ///< hanging length at t = 0 [m]
 };
 
 struct ErrorMetrics {
@@ -25,9 +25,9 @@ struct ErrorMetrics {
   double payload_relative = 0.0;  ///< payload_max / rope length
   double rope_rms_max = -1.0;     ///< max_t sqrt(1/n sum_j |r_j^A - r_j^B|^2) [m]; -1 without nodes
   double cab_max = 0.0, jib_tip_max = 0.0;  ///< [m]
-  double tension_max = 0.0;       ///< max_t |T^A - T^B| of the rope top tension [N]
-  double tension_relative = 0.0;  ///< tension_max / max_t |T^B|
-  double rope_length = 0.0;  ///< the length the relative errors divide by [m]
+  double tension_max = 0.0;                 ///< max_t |T^A - T^B| of the rope top tension [N]
+  double tension_relative = 0.0;            ///< tension_max / max_t |T^B|
+  double rope_length = 0.0;                 ///< the length the relative errors divide by [m]
 };
 
 /// Metrics at the times both trajectories share (matched to 1e-9 s). Throws InputError when

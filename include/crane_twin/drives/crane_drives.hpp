@@ -7,11 +7,9 @@
 
 #include <optional>
 
-#include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/drives/drive_axis.hpp"
 #include "crane_twin/drives/slew_torque_drive.hpp"
 #include "crane_twin/io/scene.hpp"
-#include "crane_twin/simulation/simulation.hpp"
 
 namespace crane_twin {
 
@@ -75,11 +73,5 @@ class CraneDrives {
   bool active_ = false;
   std::optional<CommandEntry> manual_;
 };
-
-/// The physical warnings of an output row from its rope_top_tension and the drives:
-/// tension_ratio = tension / breaking force of all falls, load_chart_ratio = payload / allowed
-/// load at the current radius, and the warning bits (over breaking force, outside the load
-/// chart, rope length or radius at a limit, a command limited).
-void setCraneWarnings(const CraneModel& model, const CraneDrives& drives, SeriesValues& v);
 
 }  // namespace crane_twin

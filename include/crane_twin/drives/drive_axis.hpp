@@ -13,15 +13,16 @@
 namespace crane_twin {
 
 struct DriveFlags {
-  bool speed_limited = false;     ///< |command| exceeded the speed limit
-  bool at_position_limit = false; ///< braking for, or holding at, a position limit
-  bool torque_limited = false;    ///< slewing torque drive at its torque limit
+  bool speed_limited = false;      ///< |command| exceeded the speed limit
+  bool at_position_limit = false;  ///< braking for, or holding at, a position limit
+  bool torque_limited = false;     ///< slewing torque drive at its torque limit
 };
 
 class DriveAxis {
  public:
   /// limits: max_speed > 0, max_acceleration > 0; position range [lo, hi] (infinite: no limit).
-  DriveAxis(const DriveLimits& limits, double position, double lo = -std::numeric_limits<double>::infinity(),
+  DriveAxis(const DriveLimits& limits, double position,
+            double lo = -std::numeric_limits<double>::infinity(),
             double hi = std::numeric_limits<double>::infinity());
 
   /// Advance by dt under the rate command; returns what limited it.

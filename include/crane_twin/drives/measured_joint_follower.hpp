@@ -9,9 +9,10 @@
 //   rate     = v_k + gain (x* - x_model),  limited to the drive's max speed,
 // v_k the measured velocity, or, when the message has none, the slope of a least-squares line
 // through the samples of the last velocity_window seconds (a finite difference of two samples
-// 50 ms apart with 10 ms of jitter would be 40 % off). Beyond stale_after without a sample the input is flagged stale (for
-// diagnostics) and still extrapolated; beyond max_extrapolation v_k = 0: the axis holds the
-// last measured position (a sensor that died while the crane stopped must not drive it on).
+// 50 ms apart with 10 ms of jitter would be 40 % off). Beyond stale_after without a sample the
+// input is flagged stale (for diagnostics) and still extrapolated; beyond max_extrapolation v_k =
+// 0: the axis holds the last measured position (a sensor that died while the crane stopped must not
+// drive it on).
 #pragma once
 
 #include <Eigen/Dense>
@@ -26,9 +27,9 @@
 namespace crane_twin {
 
 struct JointSample {
-  double t = 0.0;                              ///< [s] of the twin's simulated time
+  double t = 0.0;                                      ///< [s] of the twin's simulated time
   Eigen::Vector3d position = Eigen::Vector3d::Zero();  ///< slew [rad], trolley [m], hoist [m]
-  std::optional<Eigen::Vector3d> velocity;     ///< [rad/s, m/s, m/s]
+  std::optional<Eigen::Vector3d> velocity;             ///< [rad/s, m/s, m/s]
 };
 
 struct JointFollowerSettings {

@@ -23,7 +23,7 @@
 namespace crane_twin {
 
 struct TrajectoryPoint {
-  double time_from_start = 0.0;                  ///< [s]
+  double time_from_start = 0.0;                 ///< [s]
   std::array<std::optional<double>, 3> target;  ///< slew [rad], trolley [m], hoist [m]; empty: hold
 };
 
@@ -37,7 +37,8 @@ class TrajectoryFollower {
   /// "" if the points are acceptable for this crane, else what is wrong: no points, a
   /// non-finite value, times not increasing (or negative), a radius or rope length outside the
   /// crane's limits.
-  static std::string validate(const std::vector<TrajectoryPoint>& points, const CraneDescription& crane);
+  static std::string validate(const std::vector<TrajectoryPoint>& points,
+                              const CraneDescription& crane);
 
   /// Start following (replaces any active trajectory); t: current simulated time [s].
   void start(std::vector<TrajectoryPoint> points, double t);

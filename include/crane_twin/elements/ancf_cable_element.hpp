@@ -108,10 +108,10 @@ void ancfAxialDampingForce(const AncfCableProperties& p, double c, const Vector1
                            const Vector12& edot, Vector12& Q, Matrix12* C = nullptr);
 
 /// The energy density phi(a, b) = EA/2 (|a| - 1)^2 + EI/2 |a x b|^2 / |a|^6 of one point of the
-/// rope (EA/2 max(|a| - 1, 0)^2 for the axial part when tension_only), a = r_x [-], b = r_xx [1/m] (the integrand of U above), and its derivatives: the
-/// gradient (fa, fb) = (d phi/da, d phi/db) [N] and, when asked, the Hessian blocks Paa, Pab,
-/// Pbb (Pab = d2 phi / da db^T). The element and the reduced rope (InvariantRopeBasis) both
-/// integrate this function, so they share one energy.
+/// rope (EA/2 max(|a| - 1, 0)^2 for the axial part when tension_only), a = r_x [-], b = r_xx [1/m]
+/// (the integrand of U above), and its derivatives: the gradient (fa, fb) = (d phi/da, d phi/db)
+/// [N] and, when asked, the Hessian blocks Paa, Pab, Pbb (Pab = d2 phi / da db^T). The element and
+/// the reduced rope (InvariantRopeBasis) both integrate this function, so they share one energy.
 struct CablePointDerivatives {
   Eigen::Vector3d fa = Eigen::Vector3d::Zero(), fb = Eigen::Vector3d::Zero();
   Eigen::Matrix3d Paa = Eigen::Matrix3d::Zero(), Pab = Eigen::Matrix3d::Zero(),
@@ -121,7 +121,7 @@ void ancfCablePoint(double EA, double EI, const Eigen::Vector3d& a, const Eigen:
                     bool hessian, CablePointDerivatives& d, bool tension_only = false);
 /// The density phi(a, b) itself [J/m] (what ancfCablePoint differentiates).
 double ancfCableEnergyDensity(double EA, double EI, const Eigen::Vector3d& a,
-                             const Eigen::Vector3d& b, bool tension_only = false);
+                              const Eigen::Vector3d& b, bool tension_only = false);
 
 /// Axial strain eps and curvature kappa at xi (for output and tests).
 void ancfStrainCurvature(const Vector12& e, double xi, double l, double& eps, double& kappa);

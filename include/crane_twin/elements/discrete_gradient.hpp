@@ -27,7 +27,8 @@ struct SquaredLengthSecant {
 };
 
 /// Below this |s1 - s0| [-] the secant is its midpoint limit: the energy error of that is
-/// O(W''' ds^3), 1e-24 of W''', while the difference quotient would carry round-off of 1e-16 W / ds.
+/// O(W''' ds^3), 1e-24 of W''', while the difference quotient would carry round-off of 1e-16 W /
+/// ds.
 constexpr double kSquaredLengthSecantTiny = 1e-8;
 
 /// W, dW, ddW: callables s -> W(s), W'(s), W''(s).

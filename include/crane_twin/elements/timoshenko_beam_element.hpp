@@ -20,15 +20,15 @@ using Matrix6 = Eigen::Matrix<double, 6, 6>;
 
 /// Cross-section and material. Units: Pa, m^2, m^4, kg/m^3.
 struct BeamSection {
-  double E = 2.06e11;        ///< Young's modulus
-  double G = 7.9e10;         ///< shear modulus
-  double density = 7850.0;   ///< rho
-  double area = 0.0;         ///< A
-  double shear_area_y = 0.0; ///< A_sy (shear along local y); 0 = rigid in shear (Euler-Bernoulli)
-  double shear_area_z = 0.0; ///< A_sz
-  double Iy = 0.0;           ///< second moment about local y (bending in the x-z plane)
-  double Iz = 0.0;           ///< second moment about local z (bending in the x-y plane)
-  double J = 0.0;            ///< torsion constant
+  double E = 2.06e11;         ///< Young's modulus
+  double G = 7.9e10;          ///< shear modulus
+  double density = 7850.0;    ///< rho
+  double area = 0.0;          ///< A
+  double shear_area_y = 0.0;  ///< A_sy (shear along local y); 0 = rigid in shear (Euler-Bernoulli)
+  double shear_area_z = 0.0;  ///< A_sz
+  double Iy = 0.0;            ///< second moment about local y (bending in the x-z plane)
+  double Iz = 0.0;            ///< second moment about local z (bending in the x-y plane)
+  double J = 0.0;             ///< torsion constant
   double outer_diameter = 0.0;  ///< tube's D [m], the width the wind sees (0: no wind area)
 
   /// Thin-walled circular tube of outer diameter D and wall t (A_s = A/2, J = 2I).

@@ -15,7 +15,7 @@ struct CoupledState {
   Eigen::VectorXd a;               ///< generalized-alpha acceleration-like variable
   Eigen::VectorXd z, zd, zdd, za;  ///< the same for the support coordinates (empty: anchor)
   Eigen::Vector3d lambda = Eigen::Vector3d::Zero();  ///< force of the rope top on the support [N]
-  int newton_iterations = 0;       ///< iterations of the last step
+  int newton_iterations = 0;                         ///< iterations of the last step
 };
 
 }  // namespace crane_twin

@@ -10,15 +10,11 @@
 
 namespace crane_twin {
 
-struct Scene;
-
 struct GeneralizedAlpha {
   double alpha_m = 0.0, alpha_f = 0.0, gamma = 0.5, beta = 0.25;
   /// Throws std::invalid_argument unless 0 <= rho_inf <= 1.
   static GeneralizedAlpha fromRhoInf(double rho_inf);
   static GeneralizedAlpha newmark();
-  /// The scene's integrator (generalized_alpha with its rho_inf, or newmark; docs/scenes.md).
-  static GeneralizedAlpha forScene(const Scene& scene);
 
   /// Predictor of a step of size h with x''_{n+1} = x''_n: advances x and x' in place from
   /// the start values x'' and a (Arnold & Bruls 2007, Alg. 1).

@@ -32,18 +32,18 @@ struct NewtonSettings {
 
 /// The weights of the beta h^2-scaled iteration matrix of a step of size h.
 struct NewtonWeights {
-  double mass = 1.0;       ///< a = (1 - alpha_m)/(1 - alpha_f)
-  double damping = 0.0;    ///< gamma h
-  double stiffness = 0.0;  ///< beta h^2
+  double mass = 1.0;                            ///< a = (1 - alpha_m)/(1 - alpha_f)
+  double damping = 0.0;                         ///< gamma h
+  double stiffness = 0.0;                       ///< beta h^2
   Eigen::Matrix3d G = Eigen::Matrix3d::Zero();  ///< support compliance D A_z^-1 D^T
 };
 
 /// The rope's linear solve at the iterate s: assemble its rows of the system above with the
 /// weights w (r_q from s) and the condensed constraint residual rc = r_c + D A_z^-1 r_z, and
 /// return dq and dmu. False, with the reason in `why`, where the matrix is singular.
-using RopeIncrement = std::function<bool(const CoupledState& s, const NewtonWeights& w,
-                                         const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
-                                         Eigen::Vector3d& dmu, std::string& why)>;
+using RopeIncrement =
+    std::function<bool(const CoupledState& s, const NewtonWeights& w, const Eigen::Vector3d& rc,
+                       Eigen::VectorXd& dq, Eigen::Vector3d& dmu, std::string& why)>;
 
 /// One generalized-alpha step of size h from s: predictor, Newton corrections through
 /// `increment`, and step completion. False, with s at the step's start and the reason (with the

@@ -29,7 +29,9 @@ struct Bounds {
   bool lo_open = false;
   bool hi_open = false;
   static Bounds positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }
-  static Bounds nonNegative() { return {0.0, std::numeric_limits<double>::infinity(), false, false}; }
+  static Bounds nonNegative() {
+    return {0.0, std::numeric_limits<double>::infinity(), false, false};
+  }
   static Bounds closed(double a, double b) { return {a, b, false, false}; }
   static Bounds any() { return {}; }
   std::string describe() const;

@@ -21,10 +21,10 @@ struct TubeSpec {
 
 /// Triangular lattice boom (jib or counter-jib): two bottom chords, one top chord.
 struct LatticeBoomSpec {
-  double length = 0.0;  ///< from the slewing-unit face to the tip [m]
-  double width = 0.0;   ///< distance between the bottom chords [m]
-  double height = 0.0;  ///< top chord above the bottom chords [m]
-  double panel = 0.0;   ///< station spacing [m]
+  double length = 0.0;     ///< from the slewing-unit face to the tip [m]
+  double width = 0.0;      ///< distance between the bottom chords [m]
+  double height = 0.0;     ///< top chord above the bottom chords [m]
+  double panel = 0.0;      ///< station spacing [m]
   int chord_segments = 1;  ///< beam elements per chord between two stations
   TubeSpec top_chord, bottom_chord, diagonal, horizontal;
 };

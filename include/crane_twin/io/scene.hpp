@@ -21,26 +21,26 @@ struct CommandEntry {
 };
 
 struct RopeSettings {
-  std::string model = "reduced";  ///< pendulum | full | reduced
+  std::string model = "reduced";        ///< pendulum | full | reduced
   std::string reduction = "invariant";  ///< reduced: invariant | subdomains
   int elements = 120;
-  double length = 60.0;           ///< hanging length at t = 0 [m]
+  double length = 60.0;  ///< hanging length at t = 0 [m]
   int falls = 2;
   bool bending = true;
   double mode_fraction = 0.5;
-  int mode_count = 0;             ///< > 0 overrides mode_fraction
-  double subdomain_delta = 0.05;  ///< [m]
-  std::string mode_update = "warm";  ///< cold | warm (ReducedSettings)
-  double subdomain_residual = 0.0;  ///< [N] > 0: adaptive subdomains (ReducedSettings)
-  std::string subdomain_frame = "fixed";  ///< fixed | corotational (ReducedSettings)
-  double subdomain_rotation = 0.1;  ///< [rad] corotational: chord rotation per subdomain
-  double damping = 0.0;           ///< stiffness-proportional axial damping coefficient [s]
-  double mass_per_length = 1.9;   ///< per fall [kg/m]
-  double axial_stiffness = 2.2e7; ///< EA per fall [N]
-  double bending_stiffness = 78.5;///< EI per fall [N m^2]
-  double breaking_force = 345e3;  ///< per fall [N]
-  bool tension_only = true;       ///< no axial force in compression (docs/scenes.md)
-  double safety_factor = 5.0;     ///< working load limit = breaking_force / safety_factor
+  int mode_count = 0;                     ///< > 0 overrides mode_fraction
+  double subdomain_delta = 0.05;          ///< [m]
+  std::string mode_update = "warm";       ///< cold | warm (SubdomainSettings)
+  double subdomain_residual = 0.0;        ///< [N] > 0: adaptive subdomains (SubdomainSettings)
+  std::string subdomain_frame = "fixed";  ///< fixed | corotational (SubdomainSettings)
+  double subdomain_rotation = 0.1;        ///< [rad] corotational: chord rotation per subdomain
+  double damping = 0.0;                   ///< stiffness-proportional axial damping coefficient [s]
+  double mass_per_length = 1.9;           ///< per fall [kg/m]
+  double axial_stiffness = 2.2e7;         ///< EA per fall [N]
+  double bending_stiffness = 78.5;        ///< EI per fall [N m^2]
+  double breaking_force = 345e3;          ///< per fall [N]
+  bool tension_only = true;               ///< no axial force in compression (docs/scenes.md)
+  double safety_factor = 5.0;             ///< working load limit = breaking_force / safety_factor
   /// Single line in tension between the winch drum and the falls [m] (docs/model.md "Reeving").
   double reeving_length = 0.0;
 };
@@ -103,8 +103,8 @@ struct Scene {
 /// `random_commands:` of a scene (docs/stability.md hard case): a seeded, reproducible schedule.
 struct RandomCommandSpec {
   int seed = 0;
-  double interval = 1.0;   ///< s between entries
-  double fraction = 1.0;   ///< of each drive's speed limit, (0, 1]
+  double interval = 1.0;  ///< s between entries
+  double fraction = 1.0;  ///< of each drive's speed limit, (0, 1]
   bool slew = true, trolley = true, hoist = false;
 };
 

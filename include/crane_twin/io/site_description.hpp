@@ -19,10 +19,10 @@ struct SiteCrane {
 struct SiteDescription {
   std::string file;
   std::vector<SiteCrane> cranes;
-  double warn_distance = 10.0;   ///< [m] clearance under which the monitor warns
-  double error_distance = 3.0;   ///< [m] clearance under which it reports an error
-  double payload_radius = 1.0;   ///< [m] the payload as a sphere
-  double rate = 10.0;            ///< [Hz] of wall time, clearance messages per pair
+  double warn_distance = 10.0;  ///< [m] clearance under which the monitor warns
+  double error_distance = 3.0;  ///< [m] clearance under which it reports an error
+  double payload_radius = 1.0;  ///< [m] the payload as a sphere
+  double rate = 10.0;           ///< [Hz] of wall time, clearance messages per pair
 };
 
 /// Read and validate a site file: at least one crane, names unique and usable as ROS names

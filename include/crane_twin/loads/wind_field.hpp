@@ -31,16 +31,16 @@ struct WindSettings {
   double profile_exponent = 0.14;  ///< power-law exponent alpha [-]
   double gust_intensity = 0.0;     ///< I = sigma_u / U [-] (0: steady)
   int gust_seed = 0;
-  double payload_area = 0.0;            ///< projected area of the load [m^2]
+  double payload_area = 0.0;  ///< projected area of the load [m^2]
   double payload_drag_coefficient = 1.05;
-  double rope_drag_coefficient = 1.2;   ///< of the rope's diameter (0: no drag on the rope)
-  double in_service_limit = 20.0;       ///< 3 s mean speed at the jib's height [m/s]
+  double rope_drag_coefficient = 1.2;  ///< of the rope's diameter (0: no drag on the rope)
+  double in_service_limit = 20.0;      ///< 3 s mean speed at the jib's height [m/s]
 };
 
-constexpr double kAirDensity = 1.25;        ///< rho [kg/m^3] (EN 1991-1-4)
+constexpr double kAirDensity = 1.25;           ///< rho [kg/m^3] (EN 1991-1-4)
 constexpr double kWindReferenceHeight = 10.0;  ///< z_ref [m]
-constexpr double kKaimalLength = 340.2;     ///< L [m]
-constexpr double kGustSampleStep = 0.1;     ///< [s]
+constexpr double kKaimalLength = 340.2;        ///< L [m]
+constexpr double kGustSampleStep = 0.1;        ///< [s]
 constexpr int kGustSamples = 1 << 16;
 
 class WindField {

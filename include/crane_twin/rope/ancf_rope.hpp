@@ -71,7 +71,9 @@ class AncfRope {
   void setReevingLength(double equivalent_length);
   double reevingLength() const { return reeving_length_; }
   /// The elements' EA at hanging length L: EA_rope L / (L + L_s) [N].
-  double axialStiffnessAt(double L) const { return rope_axial_stiffness_ * L / (L + reeving_length_); }
+  double axialStiffnessAt(double L) const {
+    return rope_axial_stiffness_ * L / (L + reeving_length_);
+  }
   /// `rope.tension_only` (docs/scenes.md): no axial force in compression (AncfCableProperties).
   void setTensionOnly(bool on) { element_.tension_only = on; }
   const SparseMatrix& massMatrix() const { return M_; }
@@ -85,8 +87,8 @@ class AncfRope {
   const Eigen::Vector3d& externalEndForce() const { return ext_end_; }
 
   /// Hoisting by uniform rescaling (docs/model.md): every element's reference length becomes
-  /// length / elements; M and F_g are updated in place (rope mass mu L exactly, same pattern). Throws
-  /// std::invalid_argument for a non-positive length.
+  /// length / elements; M and F_g are updated in place (rope mass mu L exactly, same pattern).
+  /// Throws std::invalid_argument for a non-positive length.
   void setLength(double length);
   /// Rescale a coordinate-like vector (q, v, q'') so the rope's geometry is unchanged under a
   /// length change from `from` to `to`: positions stay, slopes r_x scale by from / to.
@@ -111,7 +113,8 @@ class AncfRope {
   static Eigen::Vector3d nodePosition(const Eigen::VectorXd& q, int node) {
     return q.segment<3>(6 * node);
   }
-  /// Smallest nodal axial strain (a chain without a rigging) min_j |r_j,x| - 1 (the slack checks of the reduced models).
+  /// Smallest nodal axial strain (a chain without a rigging) min_j |r_j,x| - 1 (the slack checks of
+  /// the reduced models).
   static double minNodalStrain(const Eigen::VectorXd& q);
   /// Kinetic energy of the velocities v relative to the top node's, 1/2 w^T M w with
   /// w_j = v_j - v_0 on every node position [J] (what a projection may drop).
@@ -146,7 +149,6 @@ class AncfRope {
 
 /// Points r(x) of an ANCF rope with coordinates q (6 per node) and element length l, sampled
 /// `per_element` times per element plus the end node (docs/model.md shape functions).
-std::vector<Eigen::Vector3d> sampleRopeCurve(const Eigen::VectorXd& q, double l,
-                                             int per_element);
+std::vector<Eigen::Vector3d> sampleRopeCurve(const Eigen::VectorXd& q, double l, int per_element);
 
 }  // namespace crane_twin

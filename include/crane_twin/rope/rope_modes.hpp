@@ -1,8 +1,8 @@
 // Lowest modes of the rope linearised at a state e_m with its top node's position held
 // (docs/model.md): K_ii(e_m) phi = w^2 M_ii phi over the rope coordinates without the top node's
 // three position DOFs (the top slope stays free), mass-normalised. With the three rigid
-// translations of the whole rope they span the reduced rope's motion (ReducedOrderSolver): the top
-// moves by the translations, which cost no elastic force (the energy is translation-invariant).
+// translations of the whole rope they span the reduced rope's motion (SubdomainReducedSolver): the
+// top moves by the translations, which cost no elastic force (the energy is translation-invariant).
 //
 // Cold solve: ARPACK shift-invert (a few modes) or Eigen's dense generalised solver (a large
 // fraction of the spectrum, where Lanczos needs nearly the whole space anyway).
@@ -25,10 +25,10 @@ struct RopeModes {
 };
 
 struct RopeModeSettings {
-  int kept = 10;          ///< modes kept, 1 .. n - 3
-  int guard = 0;          ///< extra block vectors for warm updates (0: max(4, kept / 4))
-  double shift = -1.0;    ///< sigma [rad^2/s^2]
-  int sweeps = 2;         ///< subspace iterations per warm update
+  int kept = 10;        ///< modes kept, 1 .. n - 3
+  int guard = 0;        ///< extra block vectors for warm updates (0: max(4, kept / 4))
+  double shift = -1.0;  ///< sigma [rad^2/s^2]
+  int sweeps = 2;       ///< subspace iterations per warm update
 };
 
 /// Interior (top position removed) K and M of the rope: rows/cols 3.. of the full matrices.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "crane_twin/integrators/generalized_alpha.hpp"
 #include "crane_twin/io/scene.hpp"
 #include "crane_twin/structure/tower_crane_structure.hpp"
 
@@ -33,8 +34,10 @@ struct CraneModel {
   Scene scene;
   std::optional<TowerCraneStructure> structure;  ///< built unless crane: none
   EquivalentRope rope;
-  double end_mass = 0.0;  ///< at the chain's end node [kg]: payload + hook block, or the payload alone under a rigging
-  double hook_mass = 0.0; ///< with a rigging (hook.rigging_length): the hook block at the hoist rope's end [kg]
+  double end_mass = 0.0;  ///< at the chain's end node [kg]: payload + hook block, or the payload
+                          ///< alone under a rigging
+  double hook_mass =
+      0.0;  ///< with a rigging (hook.rigging_length): the hook block at the hoist rope's end [kg]
   /// Point masses the hoist rope carries [kg]: payload and hook block.
   double hangingPointMass() const { return end_mass + hook_mass; }
   /// With structure.geometric_stiffness: each member's axial force under the self-weight and
@@ -49,13 +52,17 @@ struct CraneModel {
   /// Mass that moves with the trolley point [kg] (0 without a crane): the trolley, and the
   /// reeving's line mu L_r, which the jib carries (docs/model.md "Reeving").
   double trolleyMass() const {
-    return scene.crane ? scene.crane->trolley_mass + scene.rope.mass_per_length * scene.rope.reeving_length
-                       : 0.0;
+    return scene.crane
+               ? scene.crane->trolley_mass + scene.rope.mass_per_length * scene.rope.reeving_length
+               : 0.0;
   }
   /// Gravity (0, 0, -g) [m/s^2].
   Eigen::Vector3d gravityVector() const { return Eigen::Vector3d(0.0, 0.0, -scene.gravity); }
 };
 
 CraneModel buildCraneModel(const Scene& scene);
+
+/// The scene's integrator (generalized_alpha with its rho_inf, or newmark; docs/scenes.md).
+GeneralizedAlpha integratorFor(const Scene& scene);
 
 }  // namespace crane_twin

@@ -52,7 +52,8 @@ class InvariantReducedSimulation final : public Simulation {
   void setMeasuredWind(const Eigen::Vector3d& v) override { full_.setMeasuredWind(v); }
   double time() const override { return full_order_ ? full_.time() : state_.t; }
   SeriesValues series() const override;
-  void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab, Eigen::Vector3d& jib_tip) const override;
+  void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
+              Eigen::Vector3d& jib_tip) const override;
   int ropeNodes() const override { return full_.ropeNodes(); }
   Eigen::Vector3d ropeNode(int j) const override {
     return full_order_ ? full_.ropeNode(j) : solver_->nodePosition(state_.q, j);

@@ -29,6 +29,11 @@ class PendulumCraneSimulation final : public SupportedRopeSimulation {
   /// The straight chord, per_element points and the end point.
   std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override;
   long halvedSteps() const override { return solver_->halvedSteps(); }
+  /// Continue another pendulum run of the same scene (a forecast from the twin's state): its
+  /// drives, rope length and state; with another time step the accelerations and the
+  /// generalized-alpha variables restart from its positions and velocities. Throws InputError
+  /// for another rope model.
+  void continueFrom(const Simulation& other) override;
 
   double topTension(const CoupledState& s) const { return solver_->topTension(s); }
   const PendulumRope& rope() const { return *rope_; }

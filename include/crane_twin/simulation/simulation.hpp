@@ -35,13 +35,13 @@ struct SeriesValues {
 
 /// Bits of SeriesValues::warnings.
 enum Warning : int {
-  kTensionOverBreakingForce = 1,  ///< tension_ratio > 1
-  kOutsideLoadChart = 2,          ///< load_chart_ratio > 1
-  kRopeLengthAtLimit = 4,         ///< the hoist is braking for or holding at a length limit
-  kTrolleyAtLimit = 8,            ///< the trolley is braking for or holding at a radius limit
-  kCommandLimited = 16,           ///< a command above a drive's speed limit was limited
+  kTensionOverBreakingForce = 1,      ///< tension_ratio > 1
+  kOutsideLoadChart = 2,              ///< load_chart_ratio > 1
+  kRopeLengthAtLimit = 4,             ///< the hoist is braking for or holding at a length limit
+  kTrolleyAtLimit = 8,                ///< the trolley is braking for or holding at a radius limit
+  kCommandLimited = 16,               ///< a command above a drive's speed limit was limited
   kTensionOverWorkingLoadLimit = 32,  ///< tension_ratio > 1 / rope.safety_factor
-  kWindOverInServiceLimit = 64,   ///< 3 s mean wind at the jib's height above wind.in_service_limit
+  kWindOverInServiceLimit = 64,  ///< 3 s mean wind at the jib's height above wind.in_service_limit
   kLastWarning = kWindOverInServiceLimit,
 };
 /// Human-readable name of one warning bit.
@@ -62,7 +62,8 @@ class Simulation {
   virtual SeriesValues series() const = 0;
   /// Payload position and the cab / jib-tip displacements, without the energy and tension
   /// series() computes (cheap enough to sample every few steps).
-  virtual void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab, Eigen::Vector3d& jib_tip) const = 0;
+  virtual void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
+                      Eigen::Vector3d& jib_tip) const = 0;
   virtual int ropeNodes() const = 0;
   virtual Eigen::Vector3d ropeNode(int j) const = 0;
   /// The rope node of the hook block: the chain's last (the payload's) unless the payload hangs
@@ -127,7 +128,7 @@ class Simulation {
 };
 
 /// The simulation the scene's rope.model asks for (CraneSimulation for full,
-/// InvariantReducedSimulation for reduced, ReducedCraneSimulation for reduced with
+/// InvariantReducedSimulation for reduced, SubdomainReducedSimulation for reduced with
 /// rope.reduction: subdomains, PendulumCraneSimulation for pendulum). Throws InputError.
 std::unique_ptr<Simulation> makeSimulation(const CraneModel& model);
 

@@ -11,8 +11,8 @@
 #include <optional>
 
 #include "crane_twin/drives/crane_drives.hpp"
-#include "crane_twin/loads/wind_field.hpp"
 #include "crane_twin/integrators/coupled_state.hpp"
+#include "crane_twin/loads/wind_field.hpp"
 #include "crane_twin/rope/rope_support.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/simulation/simulation.hpp"
@@ -90,7 +90,7 @@ class SupportedRopeSimulation : public Simulation {
   CoupledState state_;
   std::optional<WindField> wind_;
   double wind_3s_ = 0.0;
-  double wind_theta_ = 0.0;  ///< slewing angle of the structure's unit wind load
+  double wind_theta_ = 0.0;           ///< slewing angle of the structure's unit wind load
   bool structure_wind_stale_ = true;  ///< the wind changed since that load was built
 };
 

@@ -60,7 +60,7 @@ class FullOrderSolver {
   /// azimuth az_rad, held by a horizontal force on the end mass (secant on the force).
   /// docs/scenes.md.
   CoupledState solveSwingEquilibrium(double swing_rad, double az_rad,
-                                  Eigen::Vector3d* holding_force = nullptr);
+                                     Eigen::Vector3d* holding_force = nullptr);
 
   /// Consistent accelerations of a state (q, v, z, zd given) at release: solves the KKT system
   /// with the constraint's second derivative r_0'' - D z'' = 0.
@@ -117,9 +117,10 @@ class FullOrderSolver {
   // the discrete gradient of the elastic energy plus the damping force at the midpoint, and A_
   // holds the derivative of twice that force.
   void assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double massWeight,
-                double stiffWeight, double dampWeight, const Eigen::Matrix3d& G,
-                Eigen::VectorXd& Q, const CoupledState* from = nullptr);
-  // Recover (dq, dz, dy) from the reduced solution x = [dq; dy] of A_ x = [r_q; r_c + D A_z^-1 r_z].
+                double stiffWeight, double dampWeight, const Eigen::Matrix3d& G, Eigen::VectorXd& Q,
+                const CoupledState* from = nullptr);
+  // Recover (dq, dz, dy) from the reduced solution x = [dq; dy] of A_ x = [r_q; r_c + D A_z^-1
+  // r_z].
   Eigen::VectorXd condensedRhs(const Eigen::VectorXd& rq, const Eigen::VectorXd& rz,
                                const Eigen::Vector3d& rc, Eigen::VectorXd& Azinv_rz) const;
   // Factorise A_; throws NumericalFailure with `what` on failure.
@@ -140,18 +141,18 @@ class FullOrderSolver {
   double ropeEnergyCreated(const CoupledState& start, const CoupledState& s) const;
   long halved_steps_ = 0;
   long energy_consistent_steps_ = 0;
-  bool switching_ = false;  ///< the last step was energy-consistent and switched
+  bool switching_ = false;          ///< the last step was energy-consistent and switched
   double last_step_length_ = -1.0;  ///< the rope's length at the previous step() or start
   bool hoisting_ = false;           ///< the length changed since: judged by energy alone
-  double energy_created_ = 0.0;  ///< sum of ropeEnergyCreated over the steps taken [J]
+  double energy_created_ = 0.0;     ///< sum of ropeEnergyCreated over the steps taken [J]
   double rope_damping_ = 0.0;
   const AncfRope& rope_;
   RopeSupport& support_;
   GeneralizedAlpha ga_;
   double h_;
   NewtonSettings newton_;
-  SparseMatrix A_;  ///< KKT iteration matrix, pattern fixed at construction
-  std::vector<int> mass_index_;   ///< value slot of each mass entry (in M's order)
+  SparseMatrix A_;               ///< KKT iteration matrix, pattern fixed at construction
+  std::vector<int> mass_index_;  ///< value slot of each mass entry (in M's order)
   std::vector<double> mass_value_;
   std::vector<int> element_index_;  ///< 144 value slots per element, column-major 12 x 12
   std::vector<int> rigging_index_;  ///< 36 value slots of the rigging bar, column-major 6 x 6

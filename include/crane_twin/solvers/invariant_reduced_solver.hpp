@@ -7,8 +7,9 @@
 // integrated by the full model's generalized-alpha Newton step (integrators/newton_step.hpp).
 //
 // The elastic force is the exact one at the expanded state, integrated at Gauss points of the
-// rope's elements (at least 2 per element, .cpp kQuadraturePoints) without expanding: with A = [a_0 ... a_(m-1)] (3 x m), D1, D2 (m x n_g) the
-// shapes' first and second xi-derivatives at the points and w_g their weights in xi,
+// rope's elements (at least 2 per element, .cpp kQuadraturePoints) without expanding: with A = [a_0
+// ... a_(m-1)] (3 x m), D1, D2 (m x n_g) the shapes' first and second xi-derivatives at the points
+// and w_g their weights in xi,
 //   r_x = A D1 / L,   r_xx = A D2 / L^2,   Q_A = sum_g w_g (phi_a,g D1_g^T + phi_b,g D2_g^T / L)
 // (phi_a, phi_b the gradient of the energy density, ancfCablePoint): two 3 x m x n_g products
 // and one density per point, O(m n_g), no assembly and no sparse factorisation. The
@@ -114,16 +115,16 @@ class InvariantReducedSolver {
   NewtonSettings newton_;
   double damping_ = 0.0;
   long halved_steps_ = 0;
-  int m_ = 0;                      ///< shapes
-  Eigen::MatrixXd D1_, D2_;        ///< m x n_g shape xi-derivatives at the Gauss points
-  Eigen::VectorXd w_;              ///< n_g weights in xi
-  Eigen::MatrixXd Ka_, Kb_;        ///< sum w D1 D1^T, sum w D2 D2^T (m x m)
-  Eigen::MatrixXd mass_hat_;       ///< Psi^T M_hat Psi of the rope alone per unit mu L
+  int m_ = 0;                 ///< shapes
+  Eigen::MatrixXd D1_, D2_;   ///< m x n_g shape xi-derivatives at the Gauss points
+  Eigen::VectorXd w_;         ///< n_g weights in xi
+  Eigen::MatrixXd Ka_, Kb_;   ///< sum w D1 D1^T, sum w D2 D2^T (m x m)
+  Eigen::MatrixXd mass_hat_;  ///< Psi^T M_hat Psi of the rope alone per unit mu L
   Eigen::RowVectorXd psi_top_, psi_end_;
   // Length-dependent.
   double L_ = 0.0;
-  Eigen::MatrixXd Mrs_;            ///< M_rs (m x m)
-  Eigen::VectorXd gravity_;        ///< F_r (3 m)
+  Eigen::MatrixXd Mrs_;      ///< M_rs (m x m)
+  Eigen::VectorXd gravity_;  ///< F_r (3 m)
   // Iteration matrix cache.
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
   bool factored_ = false;

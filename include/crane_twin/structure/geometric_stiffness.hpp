@@ -1,6 +1,7 @@
-// The structure's geometric stiffness under its own weight (P-delta, `structure.geometric_stiffness`,
-// docs/model.md "Geometric stiffness"): the static displacement u of K u = F (self-weight and the
-// hanging load at the trolley), each member's axial force N from u, and
+// The structure's geometric stiffness under its own weight (P-delta,
+// `structure.geometric_stiffness`, docs/model.md "Geometric stiffness"): the static displacement u
+// of K u = F (self-weight and the hanging load at the trolley), each member's axial force N from u,
+// and
 //   K_G = sum_e beamGeometricStiffnessGlobal(N_e),
 // so the structure's model stiffness becomes K + K_G (compressed members soften it).
 #pragma once

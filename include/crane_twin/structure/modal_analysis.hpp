@@ -20,8 +20,8 @@ struct ModalBasis {
 };
 
 struct ModalOptions {
-  int count = 10;        ///< number of modes
-  double shift = -1.0;   ///< sigma [rad^2/s^2]; negative keeps K - sigma M positive definite
+  int count = 10;       ///< number of modes
+  double shift = -1.0;  ///< sigma [rad^2/s^2]; negative keeps K - sigma M positive definite
   double tolerance = 1e-12;
   int max_iterations = 1000;
 };

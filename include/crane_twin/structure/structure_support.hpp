@@ -32,8 +32,8 @@
 #include <Eigen/CholmodSupport>
 #include <memory>
 
-#include "crane_twin/structure/modal_analysis.hpp"
 #include "crane_twin/rope/rope_support.hpp"
+#include "crane_twin/structure/modal_analysis.hpp"
 #include "crane_twin/structure/tower_crane_structure.hpp"
 
 namespace crane_twin {
@@ -59,12 +59,8 @@ class StructureSupportBase : public RopeSupport {
   Eigen::VectorXd pointForceToCoordinates(const Eigen::Vector3d& f) const override {
     return D_.transpose() * f;
   }
-  Eigen::Vector3d cabDisplacement(const Eigen::VectorXd& z) const override {
-    return cab_ * z;
-  }
-  Eigen::Vector3d jibTipDisplacement(const Eigen::VectorXd& z) const override {
-    return tip_ * z;
-  }
+  Eigen::Vector3d cabDisplacement(const Eigen::VectorXd& z) const override { return cab_ * z; }
+  Eigen::Vector3d jibTipDisplacement(const Eigen::VectorXd& z) const override { return tip_ * z; }
   const TowerCraneStructure* structure() const override { return &structure_; }
   /// u = T z (T = Phi or I).
   Eigen::VectorXd structureDisplacement(const Eigen::VectorXd& z) const override {
@@ -81,7 +77,7 @@ class StructureSupportBase : public RopeSupport {
   Eigen::Vector3d r0_;
   Eigen::Matrix<double, 3, Eigen::Dynamic> D_, cab_, tip_;
   Eigen::VectorXd euler_, centrifugal_;  ///< T^T M r_theta, T^T M c (empty: loads off)
-  Eigen::VectorXd external_;  ///< T^T f of the external load (empty: none)
+  Eigen::VectorXd external_;             ///< T^T f of the external load (empty: none)
   double external_scale_ = 1.0;
   double slew_rate_ = 0.0, slew_acceleration_ = 0.0;
 };

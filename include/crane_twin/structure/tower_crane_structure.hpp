@@ -16,8 +16,8 @@
 #include <utility>
 #include <vector>
 
-#include "crane_twin/io/crane_description.hpp"
 #include "crane_twin/elements/sparse_assembly.hpp"
+#include "crane_twin/io/crane_description.hpp"
 
 namespace crane_twin {
 
@@ -38,8 +38,8 @@ class TowerCraneStructure {
   /// Build the mesh and assemble M and K. Throws InputError on inconsistent geometry.
   static TowerCraneStructure build(const CraneDescription& crane);
 
-  std::vector<Eigen::Vector3d> nodes;    ///< undeformed positions, slewing frame [m]
-  std::vector<bool> clamped;             ///< per node
+  std::vector<Eigen::Vector3d> nodes;  ///< undeformed positions, slewing frame [m]
+  std::vector<bool> clamped;           ///< per node
   std::vector<StructureMember> members;
   std::vector<BeamSection> sections;
   std::vector<std::pair<int, double>> lumped_masses;  ///< (node, kg)

@@ -18,13 +18,13 @@
 namespace crane_twin {
 
 struct PayloadForecast {
-  double t0 = 0.0;                          ///< twin time the forecast starts from [s]
-  std::vector<double> t;                    ///< predicted times [s of simulated time]
-  std::vector<Eigen::Vector3d> payload;     ///< predicted payload positions (crane's base frame)
-  double max_swing = 0.0;       ///< largest horizontal payload offset from the trolley [m]
-  double max_swing_time = 0.0;  ///< when [s]
-  bool failed = false;          ///< the forecast run failed numerically (path up to then)
-  double wall_seconds = 0.0;    ///< what the run cost [s of wall time]
+  double t0 = 0.0;                       ///< twin time the forecast starts from [s]
+  std::vector<double> t;                 ///< predicted times [s of simulated time]
+  std::vector<Eigen::Vector3d> payload;  ///< predicted payload positions (crane's base frame)
+  double max_swing = 0.0;                ///< largest horizontal payload offset from the trolley [m]
+  double max_swing_time = 0.0;           ///< when [s]
+  bool failed = false;                   ///< the forecast run failed numerically (path up to then)
+  double wall_seconds = 0.0;             ///< what the run cost [s of wall time]
 };
 
 class PayloadForecaster {

@@ -9,12 +9,14 @@
 // is the nonlinear predictor of the mean; the filter carries the error's covariance P through
 // the linearised coupled system at the current pose:
 //   eta'' = -Omega^2 eta - 2 zeta Omega eta' + (T / l) Phi^T s      (rope force on the trolley)
-//   s''   = -(g / l) s - Phi eta''                                   (the pendulum on a moving point)
+//   s''   = -(g / l) s - Phi eta''                                   (the pendulum on a moving
+//   point)
 // Phi (2 x K) the horizontal trolley-point motion per modal coordinate, l the hanging length,
 // T the rope's top tension. Over dt: F = exp(A dt), Q by Van Loan's method from white
 // acceleration noise of density q_s on s'' and q_eta_k on eta_k''. A measured payload position z
 // (noise sigma_z per axis) updates it with H = [Phi 0 I 0]:
-//   nu = z - p_twin, S = H P H^T + R, K = P H^T S^-1, correction = K nu, P = (I - K H) P (I - K H)^T + K R K^T.
+//   nu = z - p_twin, S = H P H^T + R, K = P H^T S^-1, correction = K nu, P = (I - K H) P (I - K
+//   H)^T + K R K^T.
 // A measurement whose normalised innovation nu^T S^-1 nu exceeds gate^2 is refused; after
 // kReacquireAfter refusals in a row the filter returns to its prior and takes the next one.
 // Why this filter: the payload's position sees the swing and the structure's sway at the
@@ -29,26 +31,26 @@
 namespace crane_twin {
 
 struct SwayEstimatorSettings {
-  double measurement_noise = 0.05;     ///< sigma of each horizontal payload coordinate [m]
+  double measurement_noise = 0.05;  ///< sigma of each horizontal payload coordinate [m]
   /// Acceleration noise density q_s [m^2/s^3] of the sway: the unmodelled accelerations (wind,
   /// a load mass off by 10 %), a velocity random walk of sqrt(q) = 3 cm/s per sqrt(s).
   double process_noise = 1e-3;
-  double initial_position_sigma = 2.0; ///< sway [m]
-  double initial_velocity_sigma = 0.5; ///< sway rate [m/s]
+  double initial_position_sigma = 2.0;  ///< sway [m]
+  double initial_velocity_sigma = 0.5;  ///< sway rate [m/s]
   /// Prior sigma of the trolley point's sideways motion from each structure mode [m], and the
   /// acceleration noise density of that motion [m^2/s^3].
   double structure_sigma = 0.5;
   double structure_process_noise = 1e-4;
-  double gate = 5.0;                   ///< refuse measurements beyond this many sigma
+  double gate = 5.0;  ///< refuse measurements beyond this many sigma
   /// Throws std::invalid_argument naming the field (non-finite, not > 0).
   void check() const;
 };
 
 /// The linearised model at the current pose.
 struct SwayModel {
-  double length = 0.0;    ///< hanging length l [m]
-  double gravity = 9.81;  ///< [m/s^2]
-  double tension = 0.0;   ///< rope top tension T [N] (0: no coupling to the structure)
+  double length = 0.0;              ///< hanging length l [m]
+  double gravity = 9.81;            ///< [m/s^2]
+  double tension = 0.0;             ///< rope top tension T [N] (0: no coupling to the structure)
   Eigen::VectorXd omega2, damping;  ///< Omega_k^2, 2 zeta Omega_k of the K modes
   Eigen::Matrix2Xd phi;             ///< horizontal trolley motion per modal coordinate (2 x K)
 };
@@ -56,10 +58,10 @@ struct SwayModel {
 struct SwayUpdate {
   bool accepted = false;
   bool reacquired = false;  ///< the covariance was reset to the prior before this update
-  Eigen::Vector2d innovation = Eigen::Vector2d::Zero();           ///< z - p_twin [m]
-  double normalized = 0.0;                                         ///< nu^T S^-1 nu
-  Eigen::Vector2d position_correction = Eigen::Vector2d::Zero();  ///< to the sway s [m]
-  Eigen::Vector2d velocity_correction = Eigen::Vector2d::Zero();  ///< to s' [m/s]
+  Eigen::Vector2d innovation = Eigen::Vector2d::Zero();             ///< z - p_twin [m]
+  double normalized = 0.0;                                          ///< nu^T S^-1 nu
+  Eigen::Vector2d position_correction = Eigen::Vector2d::Zero();    ///< to the sway s [m]
+  Eigen::Vector2d velocity_correction = Eigen::Vector2d::Zero();    ///< to s' [m/s]
   Eigen::VectorXd structure_correction, structure_rate_correction;  ///< to eta, eta' (K)
 };
 

@@ -36,7 +36,8 @@
 // chord rotation: with D = Phi_c p_c (top rows zero), c = chord at e_m (last node - top),
 // theta = c x D_last / |c|^2 (the chord's infinitesimal rotation), R = exp([theta]x), and per
 // node block b (position relative to the top, or slope) of base_b = e_m,b (less the top):
-//   e_b = top_m + u_b + R (base_b + D_b - theta x base_b)    (positions; slopes without top_m + u_b)
+//   e_b = top_m + u_b + R (base_b + D_b - theta x base_b)    (positions; slopes without top_m +
+//   u_b)
 // and its time derivatives (omega = J_l(theta) theta', J_l the left Jacobian of SO(3)). With
 // theta = 0 it is the linear map. At a switch the state is carried in these coordinates and the
 // basis rotated with the chord before its update: the modes of R e are R Phi
@@ -64,8 +65,8 @@
 
 #include <chrono>
 
-#include "crane_twin/solvers/full_order_solver.hpp"
 #include "crane_twin/rope/rope_modes.hpp"
+#include "crane_twin/solvers/full_order_solver.hpp"
 
 namespace crane_twin {
 
@@ -74,9 +75,9 @@ namespace crane_twin {
 /// plus Rayleigh-Ritz, RopeModes).
 enum class ModeUpdate { cold, warm };
 
-struct ReducedSettings {
-  int kept_modes = 10;         ///< fixed-top rope modes kept (plus the 3 translations)
-  double delta = 0.05;         ///< subdomain criterion [m]
+struct SubdomainSettings {
+  int kept_modes = 10;  ///< fixed-top rope modes kept (plus the 3 translations)
+  double delta = 0.05;  ///< subdomain criterion [m]
   ModeUpdate update = ModeUpdate::warm;
   /// Co-rotational subdomains (header): the chord's rotation within a subdomain is mapped to a
   /// finite rotation, and the basis rotated with the chord at a switch. false: the paper's
@@ -92,33 +93,33 @@ struct ReducedSettings {
   /// `residual_check_steps` steps); delta then only bounds the displacement as a backstop.
   double residual_tolerance = 0.0;
   int residual_check_steps = 5;
-  RopeModeSettings modes;      ///< shift, guard, sweeps (kept is set from kept_modes)
+  RopeModeSettings modes;  ///< shift, guard, sweeps (kept is set from kept_modes)
 };
 
-struct ReducedState {
+struct SubdomainReducedState {
   double t = 0.0;
   Eigen::VectorXd y, yd, ydd, ya;  ///< [p_c; u_b] and its rates, generalized-alpha variable
   Eigen::VectorXd z, zd, zdd, za;  ///< support coordinates
   Eigen::Vector3d lambda = Eigen::Vector3d::Zero();
 };
 
-struct ReducedStatistics {
-  int subdomains = 0;              ///< subdomains started (the first one included)
-  double mode_update_seconds = 0;  ///< wall time in mode updates (incl. K_m, Q_m rebuild)
-  double setup_mode_seconds = 0;   ///< the first subdomain's (cold) modes
+struct SubdomainStatistics {
+  int subdomains = 0;                   ///< subdomains started (the first one included)
+  double mode_update_seconds = 0;       ///< wall time in mode updates (incl. K_m, Q_m rebuild)
+  double setup_mode_seconds = 0;        ///< the first subdomain's (cold) modes
   double projection_energy_loss = 0.0;  ///< kinetic energy lost by the switch projections [J]
-  double max_mode_residual = 0.0;  ///< worst relative residual of a kept mode after an update
-  int cold_fallbacks = 0;          ///< warm updates that had to fall back to a cold solve
-  int eigen_solves = 0;            ///< mode computations after the first (warm or cold)
-  int static_corrections = 0;      ///< subdomains given a static-correction vector (hoisting)
-  int ritz_updates = 0;            ///< subdomains that only re-linearised their block (hoisting)
+  double max_mode_residual = 0.0;       ///< worst relative residual of a kept mode after an update
+  int cold_fallbacks = 0;               ///< warm updates that had to fall back to a cold solve
+  int eigen_solves = 0;                 ///< mode computations after the first (warm or cold)
+  int static_corrections = 0;           ///< subdomains given a static-correction vector (hoisting)
+  int ritz_updates = 0;  ///< subdomains that only re-linearised their block (hoisting)
 };
 
-class ReducedOrderSolver {
+class SubdomainReducedSolver {
  public:
   /// Rope, support and scheme as the full-order solver's; `settings.kept_modes` in 1 .. n - 3.
-  ReducedOrderSolver(const AncfRope& rope, RopeSupport& support, const GeneralizedAlpha& scheme,
-                     double time_step, const ReducedSettings& settings);
+  SubdomainReducedSolver(const AncfRope& rope, RopeSupport& support, const GeneralizedAlpha& scheme,
+                         double time_step, const SubdomainSettings& settings);
 
   /// Start the first subdomain at a full-order state (q, v, z, zd; accelerations recomputed).
   void initialize(const CoupledState& full);
@@ -139,13 +140,13 @@ class ReducedOrderSolver {
   /// The displacement criterion runs every max(1, r / kCheckedModesPerStep) steps (r kept modes).
   static constexpr int kCheckedModesPerStep = 40;
 
-  const ReducedState& state() const { return s_; }
-  const ReducedStatistics& statistics() const { return stats_; }
+  const SubdomainReducedState& state() const { return s_; }
+  const SubdomainStatistics& statistics() const { return stats_; }
   const RopeModes& modes() const { return modes_; }
   /// The state in full rope coordinates (e, e', e'' from y, y', y''); z, lambda copied.
   CoupledState fullState() const;
   /// The map of any reduced state of the current subdomain (the co-rotational map, header).
-  CoupledState fullStateOf(const ReducedState& s) const;
+  CoupledState fullStateOf(const SubdomainReducedState& s) const;
   /// Position of rope node j [m] (O(r) work).
   Eigen::Vector3d nodePosition(int j) const;
   double constraintError() const;
@@ -160,7 +161,8 @@ class ReducedOrderSolver {
   // phi_ <- phi_ X with B^T K B X = B^T M B X diag(omega2), B = phi_ (Rayleigh-Ritz).
   void ritz(const SparseMatrix& K, const SparseMatrix& M);
   // Append psi = K_ii^-1 load_i to phi_ and Rayleigh-Ritz the block (header).
-  void addStaticCorrection(const SparseMatrix& K, const SparseMatrix& M, const Eigen::VectorXd& load);
+  void addStaticCorrection(const SparseMatrix& K, const SparseMatrix& M,
+                           const Eigen::VectorXd& load);
   // Project a full rope vector x onto the basis (M-orthogonal): solves M_r w = B^T M x.
   Eigen::VectorXd project(const Eigen::VectorXd& x) const;
   Eigen::VectorXd expand(const Eigen::VectorXd& y) const;  // Phi_c p_c + T u_b
@@ -198,27 +200,27 @@ class ReducedOrderSolver {
   RopeSupport& support_;
   GeneralizedAlpha ga_;
   double h_;
-  ReducedSettings settings_;
-  ReducedStatistics stats_;
-  ReducedState s_;
+  SubdomainSettings settings_;
+  SubdomainStatistics stats_;
+  SubdomainReducedState s_;
   // Subdomain data.
   Eigen::VectorXd e_m_;
-  Eigen::VectorXd base_;       ///< e_m with the top position taken from the node positions
-  Eigen::Vector3d chord_ = Eigen::Vector3d::Zero();  ///< last node - top node at e_m
+  Eigen::VectorXd base_;  ///< e_m with the top position taken from the node positions
+  Eigen::Vector3d chord_ = Eigen::Vector3d::Zero();        ///< last node - top node at e_m
   Eigen::Vector3d basis_chord_ = Eigen::Vector3d::Zero();  ///< chord the basis belongs to
   bool frame_ = false;  ///< this subdomain runs in the chord's frame (not while hoisting)
   RopeModes modes_;
-  Eigen::MatrixXd phi_;                        ///< kept modes (n x r)
-  Eigen::VectorXd omega2_;                     ///< kept eigenvalues
+  Eigen::MatrixXd phi_;                           ///< kept modes (n x r)
+  Eigen::VectorXd omega2_;                        ///< kept eigenvalues
   Eigen::Matrix<double, Eigen::Dynamic, 3> Mcb_;  ///< Phi_c^T M T
-  Eigen::Matrix3d Mbb_;                        ///< T^T M T (total mass I3)
-  Eigen::VectorXd f_;                          ///< [Phi_c; T]^T (F_g - Q_m)
+  Eigen::Matrix3d Mbb_;                           ///< T^T M T (total mass I3)
+  Eigen::VectorXd f_;                             ///< [Phi_c; T]^T (F_g - Q_m)
   Eigen::Matrix<double, Eigen::Dynamic, 9> centrifugal_, gravity_rotation_, elastic_rotation_;
-  Eigen::MatrixXd node_rows_;                  ///< 3 nodes x r: node positions of Phi_c
-  Eigen::MatrixXd slope_rows_;                 ///< 3 nodes x r: node slopes of Phi_c
+  Eigen::MatrixXd node_rows_;   ///< 3 nodes x r: node positions of Phi_c
+  Eigen::MatrixXd slope_rows_;  ///< 3 nodes x r: node slopes of Phi_c
   Eigen::PartialPivLU<Eigen::Matrix<double, 6, 6>> kkt_lu_;  ///< the step's 6 x 6 system
   Eigen::Matrix3d G_step_;
-  SparseMatrix K_m_;            ///< tangent at e_m (kept for the residual criterion)
+  SparseMatrix K_m_;  ///< tangent at e_m (kept for the residual criterion)
   Eigen::VectorXd Q_m_;
   long steps_in_subdomain_ = 0;
   double linearisationResidual() const;

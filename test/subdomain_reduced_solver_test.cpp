@@ -7,7 +7,7 @@
 #include <cstdio>
 
 #include "crane_twin/simulation/crane_simulation.hpp"
-#include "crane_twin/simulation/reduced_crane_simulation.hpp"
+#include "crane_twin/simulation/subdomain_reduced_simulation.hpp"
 
 using namespace crane_twin;
 
@@ -32,7 +32,8 @@ std::vector<Eigen::Vector3d> path(Simulation& sim, int steps) {
 double maxDistance(const std::vector<Eigen::Vector3d>& a, const std::vector<Eigen::Vector3d>& b,
                    int stride = 1) {
   double e = 0.0;
-  for (std::size_t i = 0; i < a.size(); ++i) e = std::max(e, (a[i] - b[stride * (i + 1) - 1]).norm());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    e = std::max(e, (a[i] - b[stride * (i + 1) - 1]).norm());
   return e;
 }
 }  // namespace
@@ -51,7 +52,7 @@ TEST(ReducedOrder, CompleteBasisWithTinyDeltaReproducesTheFullModel) {
   const CraneModel red = withSets({"rope.model=reduced", "rope.mode_count=51"});
   const CraneModel full = withSets({"rope.model=full"});
   const CraneModel fine = withSets({"rope.model=full", "time_step=0.0025"});
-  ReducedCraneSimulation r(red);
+  SubdomainReducedSimulation r(red);
   CraneSimulation f(full), ff(fine);
   const auto pr = path(r, 300), pf = path(f, 300), pff = path(ff, 1200);
   const double diff = maxDistance(pr, pf), integrator = maxDistance(pf, pff, 4);
@@ -64,7 +65,8 @@ TEST(ReducedOrder, CompleteBasisWithTinyDeltaReproducesTheFullModel) {
 namespace {
 // Rope only, 10 modes, 4 s of a 2.3 deg swing at 5 ms: (payload error against the full run,
 // subdomains) for each setting's overrides.
-std::vector<std::pair<double, int>> ropeOnlyErrors(const std::vector<std::vector<std::string>>& settings) {
+std::vector<std::pair<double, int>> ropeOnlyErrors(
+    const std::vector<std::vector<std::string>>& settings) {
   const std::vector<std::string> base = {"rope.elements=30", "initial.mode=equilibrium",
                                          "time_step=0.005"};
   auto sets = [&](std::vector<std::string> extra) {
@@ -77,7 +79,7 @@ std::vector<std::pair<double, int>> ropeOnlyErrors(const std::vector<std::vector
   for (const auto& extra : settings) {
     std::vector<std::string> s = sets({"rope.model=reduced", "rope.mode_count=10"});
     s.insert(s.end(), extra.begin(), extra.end());
-    ReducedCraneSimulation r(model("rope_pendulum_chrono.yaml", s));
+    SubdomainReducedSimulation r(model("rope_pendulum_chrono.yaml", s));
     const double e = maxDistance(path(r, 800), pf);
     out.emplace_back(e, r.subdomains());
   }
@@ -111,9 +113,9 @@ TEST(ReducedOrder, T8036PayloadTracksTheFullRunWithSoundModesAndConstraint) {
     return extra;
   };
   CraneSimulation f(model("t8036_combination1.yaml", sets({"rope.model=full"})));
-  ReducedCraneSimulation r(
-      model("t8036_combination1.yaml", sets({"rope.model=reduced", "rope.mode_count=10",
-                                              "rope.subdomain_frame=fixed"})));
+  SubdomainReducedSimulation r(
+      model("t8036_combination1.yaml",
+            sets({"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_frame=fixed"})));
   f.initialize();
   r.initialize();
   double err = 0.0, cerr = 0.0;
@@ -124,16 +126,17 @@ TEST(ReducedOrder, T8036PayloadTracksTheFullRunWithSoundModesAndConstraint) {
     cerr = std::max(cerr, r.solver().constraintError());
     ASSERT_TRUE(r.solver().state().y.allFinite() && r.solver().state().z.allFinite());
   }
-  const ReducedStatistics& st = r.solver().statistics();
-  std::printf("T8036 reduced (10 modes): payload error %.3g m, constraint error %.3g m, %d "
-              "subdomains, mode residual %.3g, projection energy loss %.3g J\n",
-              err, cerr, st.subdomains, st.max_mode_residual, st.projection_energy_loss);
+  const SubdomainStatistics& st = r.solver().statistics();
+  std::printf(
+      "T8036 reduced (10 modes): payload error %.3g m, constraint error %.3g m, %d "
+      "subdomains, mode residual %.3g, projection energy loss %.3g J\n",
+      err, cerr, st.subdomains, st.max_mode_residual, st.projection_energy_loss);
   EXPECT_LT(err, 1e-3);  // budget
   EXPECT_LT(cerr, 1e-8);
   EXPECT_GT(st.subdomains, 1);
   EXPECT_LT(st.max_mode_residual, 1e-4);
   // Sentinels: measured payload 1.71e-5 m, constraint 2.0e-14 m, 15 subdomains, mode residual
-  // 1.07e-5, projection loss 4.74e-5 J (build/core/reduced_order_solver_test, "T8036 reduced").
+  // 1.07e-5, projection loss 4.74e-5 J (build/core/subdomain_reduced_solver_test, "T8036 reduced").
   EXPECT_LT(err, 5e-5);
   EXPECT_LT(cerr, 1e-12);
   EXPECT_LE(st.subdomains, 40);
@@ -163,7 +166,8 @@ TEST(ReducedOrder, ResidualCriterionCutsSubdomainsAndErrorFallsWithItsTolerance)
   }
 }
 
-// ---- The chord's frame (corotational subdomains, ReducedOrderSolver header) -------------------
+// ---- The chord's frame (corotational subdomains, SubdomainReducedSolver header)
+// -------------------
 
 TEST(ReducedOrderCorotational, MapVelocityIsTheDerivativeOfItsPositions) {
   // Combination 1 at a reduced state 3 s into the swing (one subdomain, chord rotated): the
@@ -171,16 +175,16 @@ TEST(ReducedOrderCorotational, MapVelocityIsTheDerivativeOfItsPositions) {
   // mapped acceleration against differences of the mapped velocity along (y', y''). The map
   // leaves out J' theta' (J' theta' = a' theta x theta' + ..., of order |theta|^2 |theta'|^2 |c|
   // / 12, far under the differences' own error here).
-  ReducedCraneSimulation r(model("t8036_combination1.yaml",
-                                 {"structure.modes=20", "rope.elements=40", "rope.mode_count=10"}));
+  SubdomainReducedSimulation r(model(
+      "t8036_combination1.yaml", {"structure.modes=20", "rope.elements=40", "rope.mode_count=10"}));
   r.initialize();
   for (int k = 0; k < 3000; ++k) r.step();
-  const ReducedOrderSolver& sol = r.solver();
+  const SubdomainReducedSolver& sol = r.solver();
   ASSERT_EQ(sol.statistics().subdomains, 1);
-  const ReducedState s = sol.state();
+  const SubdomainReducedState s = sol.state();
   const CoupledState f = sol.fullStateOf(s);
   const double eps = 1e-4;
-  ReducedState sp = s, sm = s;
+  SubdomainReducedState sp = s, sm = s;
   sp.y += eps * s.yd;
   sm.y -= eps * s.yd;
   const Eigen::VectorXd vfd = (sol.fullStateOf(sp).q - sol.fullStateOf(sm).q) / (2 * eps);
@@ -192,14 +196,15 @@ TEST(ReducedOrderCorotational, MapVelocityIsTheDerivativeOfItsPositions) {
   const Eigen::Vector3d c = f.q.segment<3>(last) - f.q.head<3>();
   const Eigen::Vector3d vrel = f.v.segment<3>(last) - f.v.head<3>();
   const double rate = vrel.norm() / c.norm();
-  ReducedState at_start = s;
+  SubdomainReducedState at_start = s;
   at_start.y.setZero();
   const Eigen::Vector3d c0 = (f.q - sol.fullStateOf(at_start).q).segment<3>(last);
   const double angle = c0.norm() / c.norm();  // the chord's rotation in this subdomain, about
   const double aerr = (afd - f.qdd).norm();
-  std::printf("map: velocity rel. error %.3g; acceleration rel. error %.3g (chord rotation "
-              "%.3g rad, rate %.3g rad/s)\n",
-              verr, aerr / f.qdd.norm(), angle, rate);
+  std::printf(
+      "map: velocity rel. error %.3g; acceleration rel. error %.3g (chord rotation "
+      "%.3g rad, rate %.3g rad/s)\n",
+      verr, aerr / f.qdd.norm(), angle, rate);
   EXPECT_GT(angle, 1e-3);
   EXPECT_LT(verr, 1e-7);
   EXPECT_LT(aerr, 1e-6 * f.qdd.norm());
@@ -218,11 +223,11 @@ std::pair<double, int> swingError(double deg, int steps, const std::string& fram
     return extra;
   };
   CraneSimulation f(model("rope_pendulum_chrono.yaml", sets({"rope.model=full"})));
-  ReducedCraneSimulation r(model(
-      "rope_pendulum_chrono.yaml",
-      sets({"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_frame=" + frame,
-            "rope.subdomain_delta=" + std::to_string(delta),
-            "rope.subdomain_rotation=" + std::to_string(rotation)})));
+  SubdomainReducedSimulation r(
+      model("rope_pendulum_chrono.yaml",
+            sets({"rope.model=reduced", "rope.mode_count=10", "rope.subdomain_frame=" + frame,
+                  "rope.subdomain_delta=" + std::to_string(delta),
+                  "rope.subdomain_rotation=" + std::to_string(rotation)})));
   const double e = maxDistance(path(r, steps), path(f, steps));
   return {e, r.subdomains()};
 }
@@ -232,8 +237,10 @@ std::pair<std::pair<double, int>, std::pair<double, int>> bothFrames(double deg,
                                                                      double delta) {
   const auto fixed = swingError(deg, steps, "fixed", delta);
   const auto rotating = swingError(deg, steps, "corotational", delta);
-  std::printf("%g deg swing, delta %g m: fixed %.3g m in %d subdomains; corotational %.3g m in "
-              "%d\n", deg, delta, fixed.first, fixed.second, rotating.first, rotating.second);
+  std::printf(
+      "%g deg swing, delta %g m: fixed %.3g m in %d subdomains; corotational %.3g m in "
+      "%d\n",
+      deg, delta, fixed.first, fixed.second, rotating.first, rotating.second);
   return {fixed, rotating};
 }
 }  // namespace
@@ -247,7 +254,7 @@ TEST(ReducedOrderCorotational, RigidSwingNeedsNoNewSubdomain) {
   EXPECT_EQ(rotating.second, 1);
   EXPECT_LT(rotating.first, fixed.first);
   EXPECT_LT(rotating.first, 1e-4);
-  // Sentinel: measured 1.32e-5 m (build/core/reduced_order_solver_test, "2.3 deg swing").
+  // Sentinel: measured 1.32e-5 m (build/core/subdomain_reduced_solver_test, "2.3 deg swing").
   EXPECT_LT(rotating.first, 5e-5);
 }
 
@@ -259,7 +266,7 @@ TEST(ReducedOrderCorotational, LargeSwingIsCutByTheRotationBoundAndTracksFullOrd
   EXPECT_GE(rotating.second, 3);
   EXPECT_LT(rotating.first, fixed.first);
   EXPECT_LT(rotating.first, 0.01);
-  // Measured 5.14e-3 m in 7 subdomains (build/core/reduced_order_solver_test, "20 deg swing,
+  // Measured 5.14e-3 m in 7 subdomains (build/core/subdomain_reduced_solver_test, "20 deg swing,
   // delta 0.1 m"; the fixed frame 1.64 m in 361): the 1 cm bound is within 2x of it.
   EXPECT_LE(rotating.second, 20);
   // A tighter rotation bound (rope.subdomain_rotation) cuts more subdomains. It is no sure gain

@@ -1,6 +1,7 @@
-// A scene run with the reduced rope (rope.model: reduced, docs/model.md): the same rope, support
-// and initial equilibrium as the full-order model (CraneSimulation), integrated by
-// ReducedOrderSolver. Hoisting: every step that changes the rope's length rescales the expanded
+// A scene run with the paper's subdomain reduced rope (R-ANCF; rope.model: reduced with
+// rope.reduction: subdomains, docs/model.md): the same rope, support and initial equilibrium as
+// the full-order model (CraneSimulation), integrated by
+// SubdomainReducedSolver. Hoisting: every step that changes the rope's length rescales the expanded
 // state as the full model does and starts a new subdomain with a static-correction vector.
 //
 // Slack rope: a linearisation about a (nearly) slack rope is degenerate (compressed sections
@@ -18,8 +19,7 @@
 #pragma once
 
 #include "crane_twin/simulation/crane_simulation.hpp"
-#include "crane_twin/analysis/crane_snapshot.hpp"
-#include "crane_twin/solvers/reduced_order_solver.hpp"
+#include "crane_twin/solvers/subdomain_reduced_solver.hpp"
 
 namespace crane_twin {
 
@@ -28,15 +28,16 @@ namespace crane_twin {
 int keptRopeModes(const CraneModel& model);
 int keptRopeModes(const Scene& scene);
 
-class ReducedCraneSimulation final : public Simulation {
+class SubdomainReducedSimulation final : public Simulation {
  public:
-  explicit ReducedCraneSimulation(const CraneModel& model);
+  explicit SubdomainReducedSimulation(const CraneModel& model);
   void initialize() override;
   void step() override;
   void setCommand(const CommandEntry& command) override;
   double time() const override { return full_order_ ? full_.time() : solver_->state().t; }
   SeriesValues series() const override;
-  void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab, Eigen::Vector3d& jib_tip) const override {
+  void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
+              Eigen::Vector3d& jib_tip) const override {
     if (full_order_) return full_.sample(payload, cab, jib_tip);
     payload = solver_->nodePosition(full_.ropeNodes() - 1);
     cab = full_.support().cabDisplacement(solver_->state().z);
@@ -88,13 +89,13 @@ class ReducedCraneSimulation final : public Simulation {
   long fastHoistEpisodes() const { return fast_hoist_episodes_; }
   bool integratingFullOrder() const override { return full_order_; }
   double modeUpdateSeconds() const override { return solver_->statistics().mode_update_seconds; }
-  const ReducedOrderSolver& solver() const { return *solver_; }
+  const SubdomainReducedSolver& solver() const { return *solver_; }
 
  private:
   CraneSimulation full_;  ///< model setup, initial state, and the slack-rope steps
-  std::unique_ptr<ReducedOrderSolver> solver_;
-  double weight_ = 0.0;     ///< hanging weight [N]
-  double end_strain_ = 0.0; ///< static axial strain under the end mass alone
+  std::unique_ptr<SubdomainReducedSolver> solver_;
+  double weight_ = 0.0;      ///< hanging weight [N]
+  double end_strain_ = 0.0;  ///< static axial strain under the end mass alone
   long reduced_steps_ = 0;
   bool full_order_ = false;
   long full_order_steps_ = 0;
@@ -102,7 +103,7 @@ class ReducedCraneSimulation final : public Simulation {
   double basis_length_ = -1.0;  ///< rope length of the last full basis update while hoisting
   int hoist_subdomain_ = -1;
   long fast_hoist_episodes_ = 0;
-  long refused_hand_backs_ = 0;    ///< the solver's subdomain count after the last hoisting restart
+  long refused_hand_backs_ = 0;  ///< the solver's subdomain count after the last hoisting restart
 };
 
 }  // namespace crane_twin

@@ -1,4 +1,4 @@
-#include "crane_twin/solvers/reduced_order_solver.hpp"
+#include "crane_twin/solvers/subdomain_reduced_solver.hpp"
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -26,9 +26,9 @@ Eigen::Matrix3d cross(const Eigen::Vector3d& a) {
 
 }  // namespace
 
-ReducedOrderSolver::ReducedOrderSolver(const AncfRope& rope, RopeSupport& support,
-                                       const GeneralizedAlpha& scheme, double time_step,
-                                       const ReducedSettings& settings)
+SubdomainReducedSolver::SubdomainReducedSolver(const AncfRope& rope, RopeSupport& support,
+                                               const GeneralizedAlpha& scheme, double time_step,
+                                               const SubdomainSettings& settings)
     : rope_(rope), support_(support), ga_(scheme), h_(time_step), settings_(settings) {
   const int n = rope_.dofs();
   if (settings_.kept_modes < 1 || settings_.kept_modes > n - 3) {
@@ -45,16 +45,17 @@ ReducedOrderSolver::ReducedOrderSolver(const AncfRope& rope, RopeSupport& suppor
 
 // theta = c x D_last / |c|^2, R = exp([theta]x), J_l = I + (1 - cos f)/f^2 [theta]x +
 // (f - sin f)/f^3 [theta]x^2 with f = |theta| (header).
-Eigen::Vector3d ReducedOrderSolver::chordAngle(const Eigen::Vector3d& d_last) const {
+Eigen::Vector3d SubdomainReducedSolver::chordAngle(const Eigen::Vector3d& d_last) const {
   if (!frame_) return Eigen::Vector3d::Zero();
   return chord_.cross(d_last) / chord_.squaredNorm();
 }
 
-Eigen::Vector3d ReducedOrderSolver::lastNodeDisplacement(const Eigen::VectorXd& x) const {
+Eigen::Vector3d SubdomainReducedSolver::lastNodeDisplacement(const Eigen::VectorXd& x) const {
   return node_rows_.middleRows<3>(3 * (rope_.nodes() - 1)) * x.head(phi_.cols());
 }
 
-ReducedOrderSolver::ChordRotation ReducedOrderSolver::chordRotation(const Eigen::Vector3d& d_last) const {
+SubdomainReducedSolver::ChordRotation SubdomainReducedSolver::chordRotation(
+    const Eigen::Vector3d& d_last) const {
   ChordRotation c;
   c.theta = chordAngle(d_last);
   const double f = c.theta.norm();
@@ -68,7 +69,7 @@ ReducedOrderSolver::ChordRotation ReducedOrderSolver::chordRotation(const Eigen:
   return c;
 }
 
-void ReducedOrderSolver::rotateBlocks(const Eigen::Matrix3d& R, Eigen::MatrixXd& phi) {
+void SubdomainReducedSolver::rotateBlocks(const Eigen::Matrix3d& R, Eigen::MatrixXd& phi) {
   for (int k = 0; 3 * k < phi.rows(); ++k) phi.middleRows<3>(3 * k) = R * phi.middleRows<3>(3 * k);
 }
 
@@ -89,7 +90,7 @@ void ReducedOrderSolver::rotateBlocks(const Eigen::Matrix3d& R, Eigen::MatrixXd&
 // Coriolis 2 w x W' and a x W (deformation rates and deformations times the frame's rates),
 // and J' theta'. Every term is a 3 x 3 matrix applied blockwise to a field x, projected as
 // sum_kl A_kl [Phi_c; T]^T (e_k x_l): the 9-column tables below.
-Eigen::Matrix<double, Eigen::Dynamic, 9> ReducedOrderSolver::blockwiseTable(
+Eigen::Matrix<double, Eigen::Dynamic, 9> SubdomainReducedSolver::blockwiseTable(
     const Eigen::VectorXd& x) const {
   const int r = static_cast<int>(phi_.cols()), n = rope_.dofs();
   Eigen::Matrix<double, Eigen::Dynamic, 9> t(r + 3, 9);
@@ -102,7 +103,7 @@ Eigen::Matrix<double, Eigen::Dynamic, 9> ReducedOrderSolver::blockwiseTable(
   return t;
 }
 
-void ReducedOrderSolver::prepareFrameLoads(const Eigen::VectorXd& Q) {
+void SubdomainReducedSolver::prepareFrameLoads(const Eigen::VectorXd& Q) {
   if (!frame_) return;
   centrifugal_ = blockwiseTable(rope_.massMatrix() * base_);  // M (A base) = A (M base)
   gravity_rotation_ = blockwiseTable(rope_.gravityForce());
@@ -111,8 +112,9 @@ void ReducedOrderSolver::prepareFrameLoads(const Eigen::VectorXd& Q) {
   elastic_rotation_.bottomRows<3>().setZero();
 }
 
-Eigen::VectorXd ReducedOrderSolver::frameLoad(const Eigen::VectorXd& y, const Eigen::VectorXd& yd,
-                                              const Eigen::VectorXd& ydd) const {
+Eigen::VectorXd SubdomainReducedSolver::frameLoad(const Eigen::VectorXd& y,
+                                                  const Eigen::VectorXd& yd,
+                                                  const Eigen::VectorXd& ydd) const {
   const int r = static_cast<int>(phi_.cols());
   if (!frame_) return Eigen::VectorXd::Zero(r + 3);
   const ChordRotation c = chordRotation(lastNodeDisplacement(y));
@@ -135,16 +137,17 @@ Eigen::VectorXd ReducedOrderSolver::frameLoad(const Eigen::VectorXd& y, const Ei
   return out;
 }
 
-Eigen::VectorXd ReducedOrderSolver::centripetalField(const Eigen::VectorXd& v) const {
+Eigen::VectorXd SubdomainReducedSolver::centripetalField(const Eigen::VectorXd& v) const {
   Eigen::VectorXd a = Eigen::VectorXd::Zero(base_.size());
   if (!frame_) return a;
   const int last = 6 * (rope_.nodes() - 1);
   const Eigen::Vector3d w = chordAngle(v.segment<3>(last) - v.head<3>());
-  for (int k = 0; 3 * k < a.size(); ++k) a.segment<3>(3 * k) = w.cross(w.cross(base_.segment<3>(3 * k)));
+  for (int k = 0; 3 * k < a.size(); ++k)
+    a.segment<3>(3 * k) = w.cross(w.cross(base_.segment<3>(3 * k)));
   return a;
 }
 
-Eigen::VectorXd ReducedOrderSolver::expand(const Eigen::VectorXd& y) const {
+Eigen::VectorXd SubdomainReducedSolver::expand(const Eigen::VectorXd& y) const {
   const int r = static_cast<int>(phi_.cols());
   Eigen::VectorXd x = phi_ * y.head(r);
   const Eigen::Vector3d ub = y.tail<3>();
@@ -152,7 +155,7 @@ Eigen::VectorXd ReducedOrderSolver::expand(const Eigen::VectorXd& y) const {
   return x;
 }
 
-Eigen::VectorXd ReducedOrderSolver::project(const Eigen::VectorXd& x) const {
+Eigen::VectorXd SubdomainReducedSolver::project(const Eigen::VectorXd& x) const {
   // M_r w = [Phi_c^T M x; T^T M x] with M_r = [I Mcb; Mcb^T Mbb]: eliminate w_c = g_c - Mcb w_b.
   const int r = static_cast<int>(phi_.cols());
   const Eigen::VectorXd Mx = rope_.massMatrix() * x;
@@ -165,8 +168,8 @@ Eigen::VectorXd ReducedOrderSolver::project(const Eigen::VectorXd& x) const {
   return w;
 }
 
-void ReducedOrderSolver::addStaticCorrection(const SparseMatrix& K, const SparseMatrix& M,
-                                             const Eigen::VectorXd& load) {
+void SubdomainReducedSolver::addStaticCorrection(const SparseMatrix& K, const SparseMatrix& M,
+                                                 const Eigen::VectorXd& load) {
   const int n = rope_.dofs();
   Eigen::SimplicialLDLT<SparseMatrix> ldlt(withoutTopPosition(K));
   if (ldlt.info() != Eigen::Success) {
@@ -188,17 +191,17 @@ void ReducedOrderSolver::addStaticCorrection(const SparseMatrix& K, const Sparse
   ++stats_.static_corrections;
 }
 
-void ReducedOrderSolver::ritz(const SparseMatrix& K, const SparseMatrix& M) {
+void SubdomainReducedSolver::ritz(const SparseMatrix& K, const SparseMatrix& M) {
   const Eigen::MatrixXd Kr = phi_.transpose() * (K * phi_), Mr = phi_.transpose() * (M * phi_);
-  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(
-      0.5 * (Kr + Kr.transpose()), 0.5 * (Mr + Mr.transpose()));
+  const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> es(0.5 * (Kr + Kr.transpose()),
+                                                                     0.5 * (Mr + Mr.transpose()));
   if (es.info() != Eigen::Success) throw NumericalFailure(at(s_.t) + ": Rayleigh-Ritz failed");
   phi_ = phi_ * es.eigenvectors();
   omega2_ = es.eigenvalues();
 }
 
-void ReducedOrderSolver::startSubdomain(const Eigen::VectorXd& e, BasisUpdate how,
-                                        const Eigen::VectorXd& load) {
+void SubdomainReducedSolver::startSubdomain(const Eigen::VectorXd& e, BasisUpdate how,
+                                            const Eigen::VectorXd& load) {
   const auto t0 = std::chrono::steady_clock::now();
   const int n = rope_.dofs();
   Eigen::VectorXd Q;
@@ -279,11 +282,9 @@ void ReducedOrderSolver::startSubdomain(const Eigen::VectorXd& e, BasisUpdate ho
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-Eigen::VectorXd ReducedOrderSolver::solveWeighted(double a, double c, double k,
-                                                  const Eigen::VectorXd& ry,
-                                                  const Eigen::VectorXd& rz,
-                                                  const Eigen::Vector3d& rc, Eigen::VectorXd& dz,
-                                                  Eigen::Vector3d& dmu, bool cached) {
+Eigen::VectorXd SubdomainReducedSolver::solveWeighted(
+    double a, double c, double k, const Eigen::VectorXd& ry, const Eigen::VectorXd& rz,
+    const Eigen::Vector3d& rc, Eigen::VectorXd& dz, Eigen::Vector3d& dmu, bool cached) {
   const int r = static_cast<int>(phi_.cols()), m = support_.size();
   const Eigen::VectorXd d = Eigen::VectorXd::Constant(r, a) + k * omega2_;
   const Eigen::VectorXd rcd = ry.head(r).cwiseQuotient(d);
@@ -313,18 +314,19 @@ Eigen::VectorXd ReducedOrderSolver::solveWeighted(double a, double c, double k,
 
 // The 6 x 6 system in (u_b, lambda) left after eliminating p_c and z (header): with
 // d = a + k Omega^2, [a M_bb - a^2 M_cb^T diag(1/d) M_cb, I; I, -G].
-Eigen::Matrix<double, 6, 6> ReducedOrderSolver::eliminatedMatrix(double a, double k,
-                                                                 const Eigen::Matrix3d& G) const {
+Eigen::Matrix<double, 6, 6> SubdomainReducedSolver::eliminatedMatrix(
+    double a, double k, const Eigen::Matrix3d& G) const {
   const Eigen::VectorXd d = Eigen::VectorXd::Constant(omega2_.size(), a) + k * omega2_;
   Eigen::Matrix<double, 6, 6> A;
-  A.topLeftCorner<3, 3>() = a * Mbb_ - a * a * Mcb_.transpose() * d.cwiseInverse().asDiagonal() * Mcb_;
+  A.topLeftCorner<3, 3>() =
+      a * Mbb_ - a * a * Mcb_.transpose() * d.cwiseInverse().asDiagonal() * Mcb_;
   A.topRightCorner<3, 3>().setIdentity();
   A.bottomLeftCorner<3, 3>().setIdentity();
   A.bottomRightCorner<3, 3>() = -G;
   return A;
 }
 
-void ReducedOrderSolver::initializeAccelerations() {
+void SubdomainReducedSolver::initializeAccelerations() {
   const int r = static_cast<int>(phi_.cols()), m = support_.size();
   Eigen::VectorXd ry = f_ + frameLoad(s_.y, s_.yd, Eigen::VectorXd::Zero(r + 3));
   ry.head(r) -= omega2_.cwiseProduct(s_.y.head(r));
@@ -338,10 +340,10 @@ void ReducedOrderSolver::initializeAccelerations() {
   s_.za = s_.zdd;
 }
 
-void ReducedOrderSolver::initialize(const CoupledState& full) {
+void SubdomainReducedSolver::initialize(const CoupledState& full) {
   modes_ = RopeModes{};
-  stats_ = ReducedStatistics{};
-  s_ = ReducedState{};
+  stats_ = SubdomainStatistics{};
+  s_ = SubdomainReducedState{};
   s_.t = full.t;
   startSubdomain(full.q);
   // The first basis is model setup (like the structure's modes), not a mode update.
@@ -364,18 +366,19 @@ void ReducedOrderSolver::initialize(const CoupledState& full) {
 // (corotational) the chord's rotation costs nothing either (header): the criterion reads the
 // deformation W_j = D_j - theta x base_j, and the rotation is bounded by
 // settings_.max_chord_rotation.
-double ReducedOrderSolver::maxNodeIncrement() const {
+double SubdomainReducedSolver::maxNodeIncrement() const {
   const int r = static_cast<int>(phi_.cols()), last = rope_.nodes() - 1;
   const Eigen::VectorXd inc = node_rows_ * s_.y.head(r);
   const Eigen::Vector3d theta = chordAngle(inc.segment<3>(3 * last));
   double worst = 0.0;
   for (int j = 0; j <= last; ++j) {
-    worst = std::max(worst, (inc.segment<3>(3 * j) - theta.cross(base_.segment<3>(6 * j))).squaredNorm());
+    worst = std::max(worst,
+                     (inc.segment<3>(3 * j) - theta.cross(base_.segment<3>(6 * j))).squaredNorm());
   }
   return std::sqrt(worst);
 }
 
-void ReducedOrderSolver::step() {
+void SubdomainReducedSolver::step() {
   const int r = static_cast<int>(phi_.cols()), m = support_.size();
   const double h = h_, bh2 = ga_.beta * h * h, massWeight = ga_.massWeight();
   const Eigen::VectorXd ydd0 = s_.ydd, ya0 = s_.ya, zdd0 = s_.zdd, za0 = s_.za;
@@ -391,16 +394,19 @@ void ReducedOrderSolver::step() {
   // (the frame loads, .cpp top, explicit at the predicted state).
   const Eigen::VectorXd f = f_ + frameLoad(s_.y, s_.yd, ydd0);
   Eigen::VectorXd ry(r + 3);
-  ry.head(r) = s_.ydd.head(r) + Mcb_ * s_.ydd.tail<3>() + omega2_.cwiseProduct(s_.y.head(r)) -
-               f.head(r);
-  ry.tail<3>() = Mcb_.transpose() * s_.ydd.head(r) + Mbb_ * s_.ydd.tail<3>() - f.tail<3>() +
-                 s_.lambda;
+  ry.head(r) =
+      s_.ydd.head(r) + Mcb_ * s_.ydd.tail<3>() + omega2_.cwiseProduct(s_.y.head(r)) - f.head(r);
+  ry.tail<3>() =
+      Mcb_.transpose() * s_.ydd.head(r) + Mbb_ * s_.ydd.tail<3>() - f.tail<3>() + s_.lambda;
   ry *= -bh2;
   Eigen::VectorXd rz, dz;
-  if (m > 0) rz = -bh2 * (support_.internalForce(s_.z, s_.zd, s_.zdd) - support_.pointForceToCoordinates(s_.lambda));
+  if (m > 0)
+    rz = -bh2 * (support_.internalForce(s_.z, s_.zd, s_.zdd) -
+                 support_.pointForceToCoordinates(s_.lambda));
   const Eigen::Vector3d rc = -(e_m_.head<3>() + s_.y.tail<3>() - support_.point(s_.z));
   Eigen::Vector3d dmu;
-  const Eigen::VectorXd dy = solveWeighted(massWeight, ga_.gamma * h, bh2, ry, rz, rc, dz, dmu, true);
+  const Eigen::VectorXd dy =
+      solveWeighted(massWeight, ga_.gamma * h, bh2, ry, rz, rc, dz, dmu, true);
   ga_.correct(h, dy, s_.y, s_.yd, s_.ydd);
   s_.lambda += dmu / bh2;
   if (m > 0) {
@@ -417,9 +423,7 @@ void ReducedOrderSolver::step() {
                            steps_in_subdomain_ % settings_.residual_check_steps == 0 &&
                            linearisationResidual() > settings_.residual_tolerance;
   const bool rotationCut =
-      frame_ &&
-      chordAngle(lastNodeDisplacement(s_.y)).norm() >
-          settings_.max_chord_rotation;
+      frame_ && chordAngle(lastNodeDisplacement(s_.y)).norm() > settings_.max_chord_rotation;
   // The displacement check costs O(n r): with many modes it runs every r / kCheckedModesPerStep
   // steps (the deformation moves little in between; the step is linear, so a late check only
   // lets the subdomain run a few steps past delta).
@@ -432,8 +436,8 @@ void ReducedOrderSolver::step() {
   }
 }
 
-void ReducedOrderSolver::restartAt(const CoupledState& f, bool consistent_accelerations,
-                                   BasisUpdate how, const Eigen::VectorXd& load) {
+void SubdomainReducedSolver::restartAt(const CoupledState& f, bool consistent_accelerations,
+                                       BasisUpdate how, const Eigen::VectorXd& load) {
   try {
     startSubdomain(f.q, how, load);
   } catch (const NumericalFailure&) {
@@ -461,11 +465,12 @@ void ReducedOrderSolver::restartAt(const CoupledState& f, bool consistent_accele
 
 // max over nodes of |Q(e_m + W) - Q_m - K_m W| (translational rows) [N], W = e - e_m in the
 // fixed frame.
-double ReducedOrderSolver::linearisationResidual() const {
+double SubdomainReducedSolver::linearisationResidual() const {
   // In the chord's frame the linearisation is about the deformation W = D - theta x base.
   Eigen::VectorXd de = phi_ * s_.y.head(phi_.cols());
   const Eigen::Vector3d theta = chordAngle(de.segment<3>(6 * (rope_.nodes() - 1)));
-  for (int k = 0; 3 * k < de.size(); ++k) de.segment<3>(3 * k) -= theta.cross(base_.segment<3>(3 * k));
+  for (int k = 0; 3 * k < de.size(); ++k)
+    de.segment<3>(3 * k) -= theta.cross(base_.segment<3>(3 * k));
   Eigen::VectorXd Q;
   rope_.elasticForce(e_m_ + de, Q);
   const Eigen::VectorXd res = Q - Q_m_ - K_m_ * de;
@@ -479,15 +484,16 @@ double ReducedOrderSolver::linearisationResidual() const {
 // e_b'' = u_b'' + J theta'' x R W_b + w x (w x R W_b) + 2 w x R W_b' + R W_b''
 // (w = J theta'; the d/dt J term, second order in theta, is left out). The generalized-alpha
 // variable a is mapped as an acceleration.
-CoupledState ReducedOrderSolver::fullState() const { return fullStateOf(s_); }
+CoupledState SubdomainReducedSolver::fullState() const { return fullStateOf(s_); }
 
-CoupledState ReducedOrderSolver::fullStateOf(const ReducedState& st) const {
+CoupledState SubdomainReducedSolver::fullStateOf(const SubdomainReducedState& st) const {
   const int r = static_cast<int>(phi_.cols());
   const Eigen::VectorXd D = phi_ * st.y.head(r), Dv = phi_ * st.yd.head(r),
                         Da = phi_ * st.ydd.head(r), Dg = phi_ * st.ya.head(r);
   const int last = 6 * (rope_.nodes() - 1);
   const ChordRotation c = chordRotation(D.segment<3>(last));
-  const Eigen::Vector3d thv = chordAngle(Dv.segment<3>(last)), tha = chordAngle(Da.segment<3>(last)),
+  const Eigen::Vector3d thv = chordAngle(Dv.segment<3>(last)),
+                        tha = chordAngle(Da.segment<3>(last)),
                         thg = chordAngle(Dg.segment<3>(last));
   const Eigen::Vector3d w = c.J * thv, alpha = c.J * tha, alpha_g = c.J * thg;
   CoupledState f;
@@ -504,8 +510,10 @@ CoupledState ReducedOrderSolver::fullStateOf(const ReducedState& st) const {
     const Eigen::Vector3d common = w.cross(w.cross(RW)) + 2.0 * w.cross(RWv);
     f.q.segment<3>(3 * k) = RW;
     f.v.segment<3>(3 * k) = w.cross(RW) + RWv;
-    f.qdd.segment<3>(3 * k) = alpha.cross(RW) + common + c.R * (Da.segment<3>(3 * k) - tha.cross(b));
-    f.a.segment<3>(3 * k) = alpha_g.cross(RW) + common + c.R * (Dg.segment<3>(3 * k) - thg.cross(b));
+    f.qdd.segment<3>(3 * k) =
+        alpha.cross(RW) + common + c.R * (Da.segment<3>(3 * k) - tha.cross(b));
+    f.a.segment<3>(3 * k) =
+        alpha_g.cross(RW) + common + c.R * (Dg.segment<3>(3 * k) - thg.cross(b));
     if (k % 2 == 0) {  // a node position: the top's motion
       f.q.segment<3>(3 * k) += e_m_.head<3>() + st.y.tail<3>();
       f.v.segment<3>(3 * k) += st.yd.tail<3>();
@@ -521,14 +529,15 @@ CoupledState ReducedOrderSolver::fullStateOf(const ReducedState& st) const {
   return f;
 }
 
-Eigen::Vector3d ReducedOrderSolver::nodePosition(int j) const {
+Eigen::Vector3d SubdomainReducedSolver::nodePosition(int j) const {
   const int r = static_cast<int>(phi_.cols());
-  const Eigen::Vector3d b = base_.segment<3>(6 * j), Dj = node_rows_.middleRows<3>(3 * j) * s_.y.head(r);
+  const Eigen::Vector3d b = base_.segment<3>(6 * j),
+                        Dj = node_rows_.middleRows<3>(3 * j) * s_.y.head(r);
   const ChordRotation c = chordRotation(lastNodeDisplacement(s_.y));
   return e_m_.head<3>() + s_.y.tail<3>() + c.R * (b + Dj - c.theta.cross(b));
 }
 
-double ReducedOrderSolver::minNodalStrain() const {
+double SubdomainReducedSolver::minNodalStrain() const {
   const int r = static_cast<int>(phi_.cols());
   const Eigen::VectorXd slopes = slope_rows_ * s_.y.head(r);
   const Eigen::Vector3d theta = chordAngle(lastNodeDisplacement(s_.y));
@@ -541,11 +550,11 @@ double ReducedOrderSolver::minNodalStrain() const {
   return least;
 }
 
-double ReducedOrderSolver::constraintError() const {
+double SubdomainReducedSolver::constraintError() const {
   return (e_m_.head<3>() + s_.y.tail<3>() - support_.point(s_.z)).norm();
 }
 
-double ReducedOrderSolver::topTension() const {
+double SubdomainReducedSolver::topTension() const {
   return ropeTopTension(s_.lambda, rope_.topMass(), s_.ydd.tail<3>(), rope_.gravity());
 }
 

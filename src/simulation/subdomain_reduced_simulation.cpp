@@ -1,4 +1,4 @@
-#include "crane_twin/simulation/reduced_crane_simulation.hpp"
+#include "crane_twin/simulation/subdomain_reduced_simulation.hpp"
 
 #include <cmath>
 #include <string>
@@ -23,9 +23,9 @@ int keptRopeModes(const Scene& sc) {
 }
 
 namespace {
-ReducedSettings settingsFor(const CraneModel& model) {
+SubdomainSettings settingsFor(const CraneModel& model) {
   const RopeSettings& r = model.scene.rope;
-  ReducedSettings s;
+  SubdomainSettings s;
   s.kept_modes = keptRopeModes(model);
   s.delta = r.subdomain_delta;
   s.update = r.mode_update == "cold" ? ModeUpdate::cold : ModeUpdate::warm;
@@ -36,20 +36,19 @@ ReducedSettings settingsFor(const CraneModel& model) {
 }
 }  // namespace
 
-
-ReducedCraneSimulation::ReducedCraneSimulation(const CraneModel& model) : full_(model) {
+SubdomainReducedSimulation::SubdomainReducedSimulation(const CraneModel& model) : full_(model) {
   if (model.scene.rope.damping != 0.0) {
-    throw InputError(model.scene.file + ": key 'rope.damping': rope damping is built for the "
+    throw InputError(model.scene.file +
+                     ": key 'rope.damping': rope damping is built for the "
                      "full-order model only (set rope.model: full)");
   }
 
-
-  solver_ = std::make_unique<ReducedOrderSolver>(full_.rope(), full_.support(),
-                                                 GeneralizedAlpha::forScene(model.scene), model.scene.time_step,
-                                                 settingsFor(model));
+  solver_ = std::make_unique<SubdomainReducedSolver>(full_.rope(), full_.support(),
+                                                     integratorFor(model.scene),
+                                                     model.scene.time_step, settingsFor(model));
 }
 
-void ReducedCraneSimulation::initialize() {
+void SubdomainReducedSimulation::initialize() {
   const CraneModel& m = full_.model();
   weight_ = (m.end_mass + m.ropeMass()) * m.scene.gravity;
   end_strain_ = m.end_mass * m.scene.gravity / m.rope.axialStiffnessAt(m.scene.rope.length);
@@ -64,10 +63,12 @@ void ReducedCraneSimulation::initialize() {
   hoist_subdomain_ = -1;
 }
 
-void ReducedCraneSimulation::setCommand(const CommandEntry& command) { full_.setCommand(command); }
+void SubdomainReducedSimulation::setCommand(const CommandEntry& command) {
+  full_.setCommand(command);
+}
 
 // The drives move the support first (the same scheme as the full model), then one reduced step.
-void ReducedCraneSimulation::step() {
+void SubdomainReducedSimulation::step() {
   if (full_order_) {  // slack episode: full order until the rope is taut again
     full_.step();
     ++full_order_steps_;
@@ -115,7 +116,7 @@ void ReducedCraneSimulation::step() {
   if (length != from) {
     // Hoisting: the full model's rescaling on the expanded state, then a new subdomain: modes
     // and the static-correction vector after a relative length change of kHoistBasisStrain,
-    // Rayleigh-Ritz of that block in between (ReducedOrderSolver header).
+    // Rayleigh-Ritz of that block in between (SubdomainReducedSolver header).
     CoupledState f = solver_->fullState();
     Eigen::VectorXd before, after;
     full_.rope().elasticForce(f.q, before);
@@ -123,19 +124,20 @@ void ReducedCraneSimulation::step() {
     full_.rope().elasticForce(f.q, after);
     // The block must be the last hoisting subdomain's (a subdomain started since, by the
     // displacement criterion, a slack episode or at rest, has no static correction).
-    const bool renew = solver_->statistics().subdomains != hoist_subdomain_ ||
-                       !(std::abs(full_.ropeLength() - basis_length_) < kHoistBasisStrain * full_.ropeLength());
-    solver_->restartAt(f, false, renew ? ReducedOrderSolver::BasisUpdate::modes_and_correction
-                                       : ReducedOrderSolver::BasisUpdate::ritz,
+    const bool renew =
+        solver_->statistics().subdomains != hoist_subdomain_ ||
+        !(std::abs(full_.ropeLength() - basis_length_) < kHoistBasisStrain * full_.ropeLength());
+    solver_->restartAt(f, false,
+                       renew ? SubdomainReducedSolver::BasisUpdate::modes_and_correction
+                             : SubdomainReducedSolver::BasisUpdate::ritz,
                        Eigen::VectorXd(before - after));
     if (renew) basis_length_ = full_.ropeLength();
     hoist_subdomain_ = solver_->statistics().subdomains;
   }
   solver_->step();
-  const bool slack =
-      weight_ > 0.0 && (solver_->topTension() < kSlackTensionFraction * weight_ ||
-                        (++reduced_steps_ % kSlackCheckSteps == 0 &&
-                         solver_->minNodalStrain() < kSlackFraction * end_strain_));
+  const bool slack = weight_ > 0.0 && (solver_->topTension() < kSlackTensionFraction * weight_ ||
+                                       (++reduced_steps_ % kSlackCheckSteps == 0 &&
+                                        solver_->minNodalStrain() < kSlackFraction * end_strain_));
   if (slack) {
     full_.setState(solver_->fullState());
     full_order_ = true;
@@ -143,7 +145,7 @@ void ReducedCraneSimulation::step() {
   }
 }
 
-SeriesValues ReducedCraneSimulation::series() const {
+SeriesValues SubdomainReducedSimulation::series() const {
   SeriesValues v = full_.seriesOf(fullState());
   v.subdomains = solver_->statistics().subdomains;
   v.full_order_steps = full_order_steps_;
