@@ -191,7 +191,7 @@ TEST(CraneDrives, ReducedHoistingSettlesAtTheNewTension) {
   std::printf(
       "reduced, after hoisting to 20 m: mean top tension %.1f N, (M + mu L) g = %.1f N, "
       "%d subdomains, %d static corrections\n",
-      mean, expected, sim.subdomains(), sim.solver().statistics().static_corrections);
+      mean, expected, sim.statistics().subdomains, sim.solver().statistics().static_corrections);
   EXPECT_NEAR(mean, expected, 0.005 * expected);
   EXPECT_GT(sim.solver().statistics().static_corrections, 0);
 }
@@ -253,7 +253,7 @@ TEST(CraneDrives, ReducedTracksFullOnTheDriveScenes) {
       err = std::max(err, (full.series().payload - red.series().payload).norm());
     }
     std::printf("%s: reduced vs full payload error %.3g m, %d subdomains\n", scene, err,
-                red.subdomains());
+                red.statistics().subdomains);
     EXPECT_LT(err, 0.3) << scene;  // budget
     // Both models end where the schedule puts the drives: with symmetric acceleration ramps
     // each drive travels its commanded speed times the command's duration (slew90 at 40 s:

@@ -227,7 +227,7 @@ TEST(PendulumRope, SlackThrowStaysFiniteAndSnapsTaut) {
   const double W = (sim.rope().endMass() + sim.rope().massPerLength() * 60.0) * 9.81;
   EXPECT_GT(peak, 1.5 * W);  // and snapped taut
   std::printf("slack steps %.0f, peak tension %.1f kN (%.2f of the weight), halved steps %ld\n",
-              slackSteps, peak / 1e3, peak / W, sim.halvedSteps());
+              slackSteps, peak / 1e3, peak / W, sim.statistics().halved_steps);
 }
 
 TEST(PendulumRope, HoistingConservesRopeMassAndTension) {

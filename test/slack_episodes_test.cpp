@@ -51,8 +51,8 @@ SlackRun run(const std::string& scene, double duration, double time_step) {
     if (k % per_sample == 0) r.payload.push_back(s.payload);
   }
   r.steps = steps;
-  r.halved = sim->halvedSteps();
-  r.energy_consistent = sim->energyConsistentSteps();
+  r.halved = sim->statistics().halved_steps;
+  r.energy_consistent = sim->statistics().energy_consistent_steps;
   return r;
 }
 

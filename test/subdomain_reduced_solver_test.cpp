@@ -57,8 +57,8 @@ TEST(ReducedOrder, CompleteBasisWithTinyDeltaReproducesTheFullModel) {
   const auto pr = path(r, 300), pf = path(f, 300), pff = path(ff, 1200);
   const double diff = maxDistance(pr, pf), integrator = maxDistance(pf, pff, 4);
   std::printf("complete basis: reduced vs full %.3g m; full dt vs dt/4 %.3g m; subdomains %d\n",
-              diff, integrator, r.subdomains());
-  EXPECT_EQ(r.subdomains(), 301);
+              diff, integrator, r.statistics().subdomains);
+  EXPECT_EQ(r.statistics().subdomains, 301);
   EXPECT_LT(diff, integrator);
 }
 
@@ -81,7 +81,7 @@ std::vector<std::pair<double, int>> ropeOnlyErrors(
     s.insert(s.end(), extra.begin(), extra.end());
     SubdomainReducedSimulation r(model("rope_pendulum_chrono.yaml", s));
     const double e = maxDistance(path(r, 800), pf);
-    out.emplace_back(e, r.subdomains());
+    out.emplace_back(e, r.statistics().subdomains);
   }
   return out;
 }
@@ -229,7 +229,7 @@ std::pair<double, int> swingError(double deg, int steps, const std::string& fram
                   "rope.subdomain_delta=" + std::to_string(delta),
                   "rope.subdomain_rotation=" + std::to_string(rotation)})));
   const double e = maxDistance(path(r, steps), path(f, steps));
-  return {e, r.subdomains()};
+  return {e, r.statistics().subdomains};
 }
 
 // (fixed, corotational) results of swingError at the same delta, printed.

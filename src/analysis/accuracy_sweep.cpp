@@ -44,8 +44,8 @@ Trajectory recordRun(const CraneModel& model, double interval, double* wall_s, i
     if (k % every == 0) record();
   }
   if (wall_s) *wall_s = wall;
-  if (subdomains) *subdomains = sim->subdomains();
-  if (mode_updates_s) *mode_updates_s = sim->modeUpdateSeconds();
+  if (subdomains) *subdomains = sim->statistics().subdomains;
+  if (mode_updates_s) *mode_updates_s = sim->statistics().mode_update_seconds;
   return tr;
 }
 

@@ -186,9 +186,10 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   for (const auto& [bit, rows] : warned) {
     std::fprintf(stderr, "warning: %s in %ld output rows\n", ct::warningName(bit), rows);
   }
-  if (sim->halvedSteps() > 0) {
+  const ct::RunStatistics stats = sim->statistics();
+  if (stats.halved_steps > 0) {
     std::fprintf(stderr, "note: halved_steps=%ld (steps where Newton failed at the full size)\n",
-                 sim->halvedSteps());
+                 stats.halved_steps);
   }
   const double simS = steps * sc.time_step;
   // Warning counts: the bits seen (docs/cli.md) and, per bit, the output rows that carried it.
@@ -203,9 +204,9 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
       "summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=%d mode_updates_s=%.3g "
       "hand_overs=%ld full_order_steps=%ld warnings_seen=%d warning_rows=%s "
       "energy_consistent_steps=%ld halved_steps=%ld\n",
-      wall, simS, simS / wall, steps, sim->subdomains(), sim->modeUpdateSeconds(), sim->handOvers(),
-      sim->fullOrderSteps(), seen, rows_per_bit.empty() ? "none" : rows_per_bit.c_str(),
-      sim->energyConsistentSteps(), sim->halvedSteps());
+      wall, simS, simS / wall, steps, stats.subdomains, stats.mode_update_seconds, stats.hand_overs,
+      stats.full_order_steps, seen, rows_per_bit.empty() ? "none" : rows_per_bit.c_str(),
+      stats.energy_consistent_steps, stats.halved_steps);
   return 0;
 }
 

@@ -630,12 +630,13 @@ void CraneSimNode::publishDiagnostics() {
   addNumber(d, "requested_real_time_factor", settings_.real_time_factor);
   addNumber(d, "step_cost_s", last_step_cost_);
   addNumber(d, "steps", static_cast<double>(steps_));
-  addNumber(d, "subdomains", sim_->subdomains());
-  addNumber(d, "hand_overs", static_cast<double>(sim_->handOvers()));
-  addNumber(d, "full_order_steps", static_cast<double>(sim_->fullOrderSteps()));
-  addNumber(d, "mode_updates_s", sim_->modeUpdateSeconds());
+  const RunStatistics stats = sim_->statistics();
+  addNumber(d, "subdomains", stats.subdomains);
+  addNumber(d, "hand_overs", static_cast<double>(stats.hand_overs));
+  addNumber(d, "full_order_steps", static_cast<double>(stats.full_order_steps));
+  addNumber(d, "mode_updates_s", stats.mode_update_seconds);
   addNumber(d, "rejected_commands", static_cast<double>(rejected_));
-  addNumber(d, "pacing_overruns", static_cast<double>(overruns_));
+  addNumber(d, "pacing_overruns", pacer_ ? static_cast<double>(pacer_->overruns()) : 0.0);
   addNumber(d, "warnings_seen", warnings_seen_);
   {
     std::string names;
@@ -651,18 +652,21 @@ void CraneSimNode::publishDiagnostics() {
   diag_pub_.publish(a);
 }
 
-// Pacing: with real_time_factor f > 0, simulated time follows f x wall time from an anchor;
-// a lag of more than 0.25 s re-anchors (counted as an overrun) instead of racing to catch up.
-// With f = 0 the node steps from one publication to the next as fast as it can.
+// The loop: spin, then step up to what the Pacer allows (real_time_factor, lockstep with the
+// clock's followers, another node's /clock), publish at each publication time.
 void CraneSimNode::run() {
   const double dt = model_.scene.time_step, period = 1.0 / settings_.publish_rate;
+  PacerSettings pacing;
+  pacing.real_time_factor = settings_.real_time_factor;
+  pacing.publish_period = period;
+  pacing.time_step = dt;
+  pacing.follow_clock = settings_.follow_clock;
+  pacer_ = std::make_unique<Pacer>(pacing);
   const std::vector<const ros::Publisher*> own = {&state_pub_,   &joint_pub_, &marker_pub_,
                                                   &applied_pub_, &diag_pub_,  &clock_pub_};
   bool awaiting_recorder = recorder_->enabled();
   if (!awaiting_recorder) publish();  // else once the recorder listens: the bag starts at t = 0
   next_publish_ = sim_->time() + period;
-  ros::WallTime anchor_wall = ros::WallTime::now();
-  double anchor_sim = sim_->time();
   bool was_running = false;
   while (ros::ok()) {
     ros::spinOnce();
@@ -696,62 +700,43 @@ void CraneSimNode::run() {
     }
     if (!was_running) {  // (re)start pacing after a pause or reset
       tf_stamp_offset_ = ros::Duration(0.0);
-      anchor_wall = now;
-      anchor_sim = sim_->time();
+      pacer_->restart(now.toSec(), sim_->time());
       was_running = true;
     }
-    double target = next_publish_;
-    if (!follower_t_.empty()) {
-      // Lockstep with the clock's followers (docs/site.md): at most 2.5 periods ahead.
-      // Followers report total simulated time; ours runs from t_offset_ (a load change).
-      const double slowest = *std::min_element(follower_t_.begin(), follower_t_.end());
-      target = std::min(target, slowest - t_offset_ + 2.5 * period);
-      if (sim_->time() + 0.5 * dt > target) {
-        if ((now - last_warn_wall_).toSec() >= 5.0 && !std::isfinite(slowest)) {
-          last_warn_wall_ = now;
-          ROS_WARN("crane_sim_node: waiting for the clock's followers to publish their state");
-        }
-        // A follower waits for the clock while we wait for it: a clock message sent before its
-        // subscription connected is lost, so repeat the clock now and then.
-        if ((now - last_clock_wall_).toSec() >= 0.2) {
-          rosgraph_msgs::Clock c;
-          c.clock = stamp(sim_->time());
-          clock_pub_.publish(c);
-          last_clock_wall_ = now;
-        }
-        ros::WallDuration(0.0005).sleep();
-        continue;
+    // Followers report total simulated time; ours runs from t_offset_ (a load change).
+    const double slowest =
+        follower_t_.empty() ? std::numeric_limits<double>::infinity()
+                            : *std::min_element(follower_t_.begin(), follower_t_.end()) - t_offset_;
+    const double clock = settings_.follow_clock ? ros::Time::now().toSec() - t_offset_ : 0.0;
+    const Pacer::Decision pace =
+        pacer_->decide(now.toSec(), sim_->time(), next_publish_, slowest, clock);
+    if (pace.wait == Pacer::Wait::followers) {
+      if ((now - last_warn_wall_).toSec() >= 5.0 && !std::isfinite(slowest)) {
+        last_warn_wall_ = now;
+        ROS_WARN("crane_sim_node: waiting for the clock's followers to publish their state");
+      }
+      // A follower waits for the clock while we wait for it: a clock message sent before its
+      // subscription connected is lost, so repeat the clock now and then.
+      if ((now - last_clock_wall_).toSec() >= 0.2) {
+        rosgraph_msgs::Clock c;
+        c.clock = stamp(sim_->time());
+        clock_pub_.publish(c);
+        last_clock_wall_ = now;
+      }
+    } else if (pace.wait == Pacer::Wait::clock) {
+      // Waiting for the clock: its owner may be waiting for our state (lockstep), and a
+      // message sent before its subscription connected is lost, so repeat it now and then.
+      if ((now - last_state_wall_).toSec() >= 0.2) {
+        state_pub_.publish(last_state_);
+        recorder_->published(state_pub_);
+        last_state_wall_ = now;
       }
     }
-    if (settings_.follow_clock) {
-      // Keep up with the owner of /clock (stamps are simulated time from 0, ours from t_offset_).
-      target = std::min(target, ros::Time::now().toSec() - t_offset_);
-      if (sim_->time() + 0.5 * dt > target) {
-        // Waiting for the clock: the owner may be waiting for our state (lockstep), and a
-        // message sent before its subscription connected is lost, so repeat it now and then.
-        if ((now - last_state_wall_).toSec() >= 0.2) {
-          state_pub_.publish(last_state_);
-          recorder_->published(state_pub_);
-          last_state_wall_ = now;
-        }
-        ros::WallDuration(0.001).sleep();
-        continue;
-      }
-    } else if (settings_.real_time_factor > 0.0) {
-      const double paced = anchor_sim + settings_.real_time_factor * (now - anchor_wall).toSec();
-      if (paced - sim_->time() > 0.25 * settings_.real_time_factor + period) {
-        ++overruns_;
-        anchor_wall = now;
-        anchor_sim = sim_->time();
-      }
-      target = std::min(target, paced);
-      if (sim_->time() + 0.5 * dt > target) {
-        const double wait =
-            (std::min(next_publish_, sim_->time() + dt) - paced) / settings_.real_time_factor;
-        ros::WallDuration(std::clamp(wait, 1e-4, 0.01)).sleep();
-        continue;
-      }
+    if (pace.wait != Pacer::Wait::none) {
+      ros::WallDuration(pace.sleep).sleep();
+      continue;
     }
+    const double target = pace.target;
     while (sim_->time() + 0.5 * dt <= target) {
       if (!stepOnce()) break;
       if (settings_.duration > 0.0 && t_offset_ + sim_->time() >= settings_.duration - 0.5 * dt) {

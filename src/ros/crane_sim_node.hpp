@@ -24,6 +24,7 @@
 #include "crane_twin/drives/command_guard.hpp"
 #include "crane_twin/drives/trajectory_follower.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
+#include "crane_twin/simulation/pacer.hpp"
 #include "crane_twin/simulation/simulation.hpp"
 #include "recorder_link.hpp"
 #include "ros_messages.hpp"
@@ -138,7 +139,8 @@ class CraneSimNode {
   ros::WallTime last_publish_wall_;
   ros::WallTime last_structure_wall_;  ///< last publication of the structure's marker
   double last_step_cost_ = 0.0, last_rtf_ = 0.0;
-  long steps_ = 0, rejected_ = 0, overruns_ = 0;
+  long steps_ = 0, rejected_ = 0;
+  std::unique_ptr<Pacer> pacer_;  ///< when the loop may step (run())
   int warnings_seen_ = 0;
   double last_wind_3s_ = 0.0;  ///< 3 s mean wind at the jib in the last publication [m/s]
   ros::WallTime last_warn_wall_, last_diag_wall_;

@@ -29,7 +29,21 @@ int invariantRopeCoordinates(const CraneModel& m) {
   return InvariantRopeBasis(sceneRope(m), invariantBasisSettings(m.scene)).coordinates();
 }
 
-InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model) : full_(model) {
+HandOverSettings InvariantReducedSimulation::handOverSettingsFor() {
+  HandOverSettings h;
+  h.slack_tension_fraction = kSlackTensionFraction;
+  h.taut_tension_fraction = kTautTensionFraction;
+  h.slack_strain_fraction = kSlackFraction;
+  h.taut_strain_fraction = kTautFraction;
+  h.strain_check_steps = kStrainCheckSteps;
+  h.hand_back_dwell = kHandBackDwell;
+  h.hand_back_steps = kHandBackSteps;
+  h.max_hand_back_interval = kMaxHandBackInterval;
+  return h;
+}
+
+InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model)
+    : HandOverSimulation(model, handOverSettingsFor()) {
   const Scene& sc = full_.model().scene;
   // The basis of the rope at its scene length (CraneSimulation built it there).
   basis_ = std::make_unique<InvariantRopeBasis>(full_.rope(), invariantBasisSettings(sc));
@@ -38,22 +52,9 @@ InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model) 
   solver_->setRopeDamping(sc.rope.damping);
 }
 
-void InvariantReducedSimulation::initialize() {
-  const CraneModel& m = full_.model();
-  weight_ = (m.end_mass + m.ropeMass()) * m.scene.gravity;
-  end_strain_ = m.end_mass * m.scene.gravity / m.rope.axialStiffnessAt(m.scene.rope.length);
-  full_order_ = false;
-  steps_ = full_order_steps_ = hand_overs_ = 0;
-  slack_hand_overs_ = failure_hand_overs_ = indicator_hand_overs_ = start_hand_overs_ = 0;
+bool InvariantReducedSimulation::startReduced(const CoupledState&) {
   max_indicator_ = 0.0;
-  const CoupledState f = full_.initialState();  // the rope at the scene's length
-  full_.setState(f);
-  // A start the basis cannot carry (a stress-free rope, a velocity given to the payload alone)
-  // runs at full order until the hand-back criteria hold.
-  if (!tryHandBack()) {
-    handOver(f);
-    ++start_hand_overs_;
-  }
+  return tryHandBack();
 }
 
 void InvariantReducedSimulation::continueFrom(const Simulation& other) {
@@ -63,13 +64,7 @@ void InvariantReducedSimulation::continueFrom(const Simulation& other) {
     throw InputError("continueFrom: the other run's basis has another size");
   }
   full_.continueFrom(o->full_);
-  weight_ = o->weight_;
-  end_strain_ = o->end_strain_;
-  full_order_ = o->full_order_;
-  steps_ = o->steps_;
-  full_since_ = o->full_since_;
-  hand_back_interval_ = o->hand_back_interval_;
-  hand_back_countdown_ = o->hand_back_countdown_;
+  continueHandOverFrom(*o);
   if (full_order_) return;
   if (o->solver_->length() != solver_->length()) solver_->setLength(o->solver_->length());
   state_ = o->state_;
@@ -91,14 +86,6 @@ void InvariantReducedSimulation::setMotion(const CoupledState& m) {
   CoupledState r = solver_->project(f);
   solver_->initializeAccelerations(r);
   state_ = r;
-}
-
-void InvariantReducedSimulation::handOver(const CoupledState& full) {
-  full_.restartFrom(full);
-  full_since_ = full.t;
-  hand_back_interval_ = hand_back_countdown_ = kHandBackSteps;
-  full_order_ = true;
-  ++hand_overs_;
 }
 
 double InvariantReducedSimulation::predictedMinimumTension(
@@ -135,15 +122,11 @@ double InvariantReducedSimulation::swingEnergy(const CoupledState& f) const {
   return (m.end_mass + 0.5 * m.rope.mass_per_length * ropeLength()) * gn * (l - c.dot(g) / gn);
 }
 
-bool InvariantReducedSimulation::slack(const CoupledState& s, bool check_strain) const {
-  if (!(weight_ > 0.0)) return false;
-  const double T = solver_->topTension(s);
-  if (T < kSlackTensionFraction * weight_) return true;
-  if (!check_strain) return false;
-  if (solver_->minStrain(s.q) < kSlackFraction * end_strain_) return true;
+bool InvariantReducedSimulation::aboutToSlacken() const {
   const int last = full_.ropeNodes() - 1;
-  const double T_min = predictedMinimumTension(T, s.q.head<3>(), solver_->nodePosition(s.q, last),
-                                               s.v.head<3>(), solver_->nodePosition(s.v, last));
+  const double T_min = predictedMinimumTension(
+      solver_->topTension(state_), state_.q.head<3>(), solver_->nodePosition(state_.q, last),
+      state_.v.head<3>(), solver_->nodePosition(state_.v, last));
   return T_min < kSnatchTensionFraction * weight_;
 }
 
@@ -167,15 +150,12 @@ double InvariantReducedSimulation::errorIndicator(const CoupledState& f) const {
   return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
 }
 
-bool InvariantReducedSimulation::tryHandBack() {
+bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // The full model may have hoisted since the hand-over (or a new run reset the length): the
   // solver to the rope's length first.
   solver_->refreshLength();
-  const CoupledState& f = full_.state();
-  if (weight_ > 0.0) {
+  if (weight_ > 0.0) {  // the rope is taut (HandOverSimulation::tryHandBack): is it calm?
     const double T = full_.solver().topTension(f);
-    if (T < kTautTensionFraction * weight_) return false;
-    if (AncfRope::minNodalStrain(f.q) < kTautFraction * end_strain_) return false;
     const int last = 6 * (full_.ropeNodes() - 1);
     const double T_min = predictedMinimumTension(T, f.q.head<3>(), f.q.segment<3>(last),
                                                  f.v.head<3>(), f.v.segment<3>(last));
@@ -201,65 +181,32 @@ bool InvariantReducedSimulation::tryHandBack() {
   const double ind = errorIndicator(e);
   if (!(ind < kHandBackTolerance)) return false;
   state_ = r;
-  full_order_ = false;
   return true;
 }
 
-void InvariantReducedSimulation::step() {
-  if (full_order_) {
-    full_.step();
-    ++full_order_steps_;
-    // Trials every kHandBackSteps steps after the dwell, the interval doubling after each
-    // refused trial up to kMaxHandBackInterval (a scene that stays violent costs nothing extra).
-    if (full_.time() - full_since_ >= kHandBackDwell && --hand_back_countdown_ <= 0) {
-      if (!tryHandBack()) {
-        hand_back_interval_ = std::min(2 * hand_back_interval_, kMaxHandBackInterval);
-        hand_back_countdown_ = hand_back_interval_;
-      }
-    }
-    return;
-  }
-  const double h = full_.model().scene.time_step;
-  full_.advanceDrives(state_.t, h, state_.z);
+HandOverSimulation::Verdict InvariantReducedSimulation::reducedStep() {
   // Hoisting keeps y (header); the full rope follows only when it is needed (syncFullRope).
   const double to = full_.hoistTargetLength();
   if (to != solver_->length()) solver_->setLength(to);
-  ++steps_;
   try {
     solver_->step(state_);
   } catch (const NumericalFailure&) {
-    // state_ is at the step's start, already at the new length: the full model takes the step.
-    syncFullRope();
-    handOver(solver_->expand(state_));
-    ++failure_hand_overs_;
-    full_.stepAfterDrives();
-    ++full_order_steps_;
-    return;
+    return Verdict::failed;  // state_ is at the step's start, already at the new length
   }
-  if (slack(state_, steps_ % kStrainCheckSteps == 0)) {
-    syncFullRope();
-    handOver(solver_->expand(state_));
-    ++slack_hand_overs_;
-    return;
-  }
-  if (steps_ % kCheckSteps == 0) {
-    syncFullRope();
-    const CoupledState f = solver_->expand(state_);
-    const double e = errorIndicator(f);
-    max_indicator_ = std::max(max_indicator_, e);
-    if (!(e < kIndicatorTolerance)) {
-      handOver(f);
-      ++indicator_hand_overs_;
-    }
-  }
+  return Verdict::carried;
 }
 
-void InvariantReducedSimulation::sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
-                                        Eigen::Vector3d& jib_tip) const {
-  if (full_order_) return full_.sample(payload, cab, jib_tip);
-  payload = solver_->nodePosition(state_.q, full_.ropeNodes() - 1);
-  cab = full_.support().cabDisplacement(state_.z);
-  jib_tip = full_.support().jibTipDisplacement(state_.z);
+CoupledState InvariantReducedSimulation::handOverState() {
+  syncFullRope();
+  return solver_->expand(state_);
+}
+
+bool InvariantReducedSimulation::errorTooLarge(long steps) {
+  if (steps % kCheckSteps != 0) return false;
+  syncFullRope();
+  const double e = errorIndicator(solver_->expand(state_));
+  max_indicator_ = std::max(max_indicator_, e);
+  return !(e < kIndicatorTolerance);
 }
 
 void InvariantReducedSimulation::syncFullRope() {
@@ -268,26 +215,12 @@ void InvariantReducedSimulation::syncFullRope() {
   full_.followHoistLength();
 }
 
-double InvariantReducedSimulation::ropeLength() const {
-  return full_order_ ? full_.ropeLength() : solver_->length();
-}
-
-std::vector<Eigen::Vector3d> InvariantReducedSimulation::ropeCurve(int per_element) const {
-  return sampleRopeCurve(fullState().q, ropeLength() / full_.rope().elements(), per_element);
-}
-
-SeriesValues InvariantReducedSimulation::series() const {
-  // Reduced: from the reduced state (the end node, the Lagrange multiplier's tension and the
-  // reduced model's own energy, what its integrator conserves), without expanding the rope.
+SeriesValues InvariantReducedSimulation::reducedSeries() const {
+  // From the reduced state (the end node, the Lagrange multiplier's tension and the reduced
+  // model's own energy, what its integrator conserves), without expanding the rope.
   const int last = full_.ropeNodes() - 1;
-  SeriesValues v = full_order_ ? full_.series()
-                               : full_.seriesWith(state_, solver_->nodePosition(state_.q, last),
-                                                  solver_->nodePosition(state_.v, last),
-                                                  solver_->topTension(state_),
-                                                  solver_->energy(state_), solver_->length());
-  v.subdomains = 1;
-  v.full_order_steps = full_order_steps_;
-  return v;
+  return full_.seriesWith(state_, solver_->nodePosition(state_.q, last),
+                          solver_->nodePosition(state_.v, last), solver_->topTension(state_),
+                          solver_->energy(state_), solver_->length());
 }
-
 }  // namespace crane_twin

@@ -59,7 +59,7 @@ void Simulation::setMeasuredWind(const Eigen::Vector3d&) {
 
 void Simulation::continueFrom(const Simulation&) {
   throw InputError(
-      "continuing from another run's state (forecasts) needs rope.model full or "
+      "continuing from another run's state (forecasts) needs rope.model full, pendulum or "
       "reduced (rope.reduction: invariant)");
 }
 

@@ -35,8 +35,12 @@ class CraneSimulation final : public SupportedRopeSimulation {
   int hookNode() const override { return rope_->hookNode(); }
   std::vector<bool> fullStatePositionBlocks() const override;
   std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override;
-  long halvedSteps() const override { return solver_->halvedSteps(); }
-  long energyConsistentSteps() const override { return solver_->energyConsistentSteps(); }
+  RunStatistics statistics() const override {
+    RunStatistics r;
+    r.halved_steps = solver_->halvedSteps();
+    r.energy_consistent_steps = solver_->energyConsistentSteps();
+    return r;
+  }
   const AncfRope& rope() const { return *rope_; }
   const FullOrderSolver& solver() const { return *solver_; }
   double ropeLength() const override { return rope_->length(); }

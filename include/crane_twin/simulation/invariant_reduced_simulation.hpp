@@ -30,7 +30,7 @@
 #include <memory>
 
 #include "crane_twin/rope/invariant_rope_basis.hpp"
-#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/simulation/hand_over_simulation.hpp"
 #include "crane_twin/solvers/invariant_reduced_solver.hpp"
 
 namespace crane_twin {
@@ -41,58 +41,37 @@ InvariantBasisSettings invariantBasisSettings(const Scene& scene);
 /// Reduced coordinates (3 per shape) the scene's invariant basis has (builds the basis alone).
 int invariantRopeCoordinates(const CraneModel& model);
 
-class InvariantReducedSimulation final : public Simulation {
+class InvariantReducedSimulation final : public HandOverSimulation {
  public:
   /// Throws InputError for what the full-order model refuses, naming the key.
   explicit InvariantReducedSimulation(const CraneModel& model);
-  void initialize() override;
-  void step() override;
-  void setCommand(const CommandEntry& command) override { full_.setCommand(command); }
   /// The wind acts through the full model's rope loads, which the reduced solver projects.
   void setMeasuredWind(const Eigen::Vector3d& v) override { full_.setMeasuredWind(v); }
-  double time() const override { return full_order_ ? full_.time() : state_.t; }
-  SeriesValues series() const override;
-  void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
-              Eigen::Vector3d& jib_tip) const override;
-  int ropeNodes() const override { return full_.ropeNodes(); }
-  Eigen::Vector3d ropeNode(int j) const override {
-    return full_order_ ? full_.ropeNode(j) : solver_->nodePosition(state_.q, j);
-  }
-  CoupledState fullState() const override {
-    return full_order_ ? full_.fullState() : solver_->expand(state_);
-  }
-  const CraneDrives& drives() const override { return full_.drives(); }
-  const RopeSupport& support() const override { return full_.support(); }
-  std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override;
   void continueFrom(const Simulation& other) override;
   /// Reduced: the motion projected onto the basis (exact for a rigid rotation of a state the
   /// basis carries); at full order: the full model's.
   void setMotion(const CoupledState& s) override;
-  /// The rope length being integrated [m] (the full rope's only while at full order).
-  double ropeLength() const;
-  int subdomains() const override { return 1; }  ///< one basis for the whole run
-  long halvedSteps() const override { return solver_->halvedSteps() + full_.halvedSteps(); }
-  long energyConsistentSteps() const override { return full_.energyConsistentSteps(); }
-  long handOvers() const override { return hand_overs_; }
-  long fullOrderSteps() const override { return full_order_steps_; }
-  bool integratingFullOrder() const override { return full_order_; }
 
   const InvariantRopeBasis& basis() const { return *basis_; }
   const InvariantReducedSolver& solver() const { return *solver_; }
-  const CraneSimulation& crane() const { return full_; }
   /// The reduced state (y, z) while integrating reduced.
   const CoupledState& reducedState() const { return state_; }
   /// The error indicator at a full-coordinate state: max node |dq| [m] (header).
   double errorIndicator(const CoupledState& full) const;
   /// Hand-overs by cause: slack (or its prediction), failed step, error indicator.
-  long slackHandOvers() const { return slack_hand_overs_; }
-  long failureHandOvers() const { return failure_hand_overs_; }
-  long indicatorHandOvers() const { return indicator_hand_overs_; }
+  long slackHandOvers() const { return handOvers(Cause::slack); }
+  long failureHandOvers() const { return handOvers(Cause::failure); }
+  long indicatorHandOvers() const { return handOvers(Cause::indicator); }
   /// 1 where the scene's start was not carried by the basis and the run began at full order.
-  long startHandOvers() const { return start_hand_overs_; }
+  long startHandOvers() const { return handOvers(Cause::start); }
   /// Largest indicator value seen on a reduced step [m].
   double maxIndicator() const { return max_indicator_; }
 
+  /// The hand-over's thresholds for this rope (HandOverSettings): slack under 0.1 of the weight
+  /// (top tension) or of the end mass's static strain, taut again above 0.2; strain checked
+  /// every 10 steps; hand-back trials after a 1 s dwell (the waves of a snatch or a slack
+  /// episode ring for about a second on a 60 m rope), every 20 steps, doubling up to 640.
+  static HandOverSettings handOverSettingsFor();
   static constexpr double kSlackFraction = 0.1, kTautFraction = 0.2;
   static constexpr double kSlackTensionFraction = 0.1, kTautTensionFraction = 0.2;
   /// Snatch risk (checked with the strain): the tension the end mass's axial oscillation
@@ -127,26 +106,33 @@ class InvariantReducedSimulation final : public Simulation {
   /// waves of a snatch or a slack episode ring for about a second on a 60 m rope.
   static constexpr double kHandBackDwell = 1.0;
 
+ protected:
+  bool startReduced(const CoupledState& full) override;
+  Verdict reducedStep() override;
+  bool tryTakeOver(const CoupledState& full) override;
+  CoupledState handOverState() override;
+  bool restartsAtHandOver() const override { return true; }
+  double reducedTime() const override { return state_.t; }
+  const Eigen::VectorXd& reducedSupport() const override { return state_.z; }
+  Eigen::Vector3d reducedNode(int j) const override { return solver_->nodePosition(state_.q, j); }
+  CoupledState expandReduced() const override { return solver_->expand(state_); }
+  SeriesValues reducedSeries() const override;
+  double reducedLength() const override { return solver_->length(); }
+  double reducedTopTension() const override { return solver_->topTension(state_); }
+  double reducedMinStrain() const override { return solver_->minStrain(state_.q); }
+  long reducedHalvedSteps() const override { return solver_->halvedSteps(); }
+  bool aboutToSlacken() const override;
+  bool errorTooLarge(long steps) override;
+
  private:
-  void handOver(const CoupledState& full);
   void syncFullRope();
-  bool slack(const CoupledState& s, bool check_strain) const;
   // Potential energy of the swing of a full-coordinate state above the hanging rope [J].
   double swingEnergy(const CoupledState& full) const;
-  bool tryHandBack();
 
-  CraneSimulation full_;
   std::unique_ptr<InvariantRopeBasis> basis_;
   std::unique_ptr<InvariantReducedSolver> solver_;
   CoupledState state_;
-  double weight_ = 0.0, end_strain_ = 0.0;
-  bool full_order_ = false;
-  long steps_ = 0, full_order_steps_ = 0, hand_overs_ = 0;
-  long slack_hand_overs_ = 0, failure_hand_overs_ = 0, indicator_hand_overs_ = 0;
-  long start_hand_overs_ = 0;
   double max_indicator_ = 0.0;
-  double full_since_ = 0.0;  ///< time of the last hand-over [s]
-  int hand_back_interval_ = kHandBackSteps, hand_back_countdown_ = kHandBackSteps;
   mutable Eigen::SimplicialLDLT<SparseMatrix> indicator_ldlt_;
   mutable bool indicator_pattern_ = false;
 };

@@ -28,7 +28,11 @@ class PendulumCraneSimulation final : public SupportedRopeSimulation {
   Eigen::Vector3d ropeNode(int j) const override { return state_.q.segment<3>(3 * j); }
   /// The straight chord, per_element points and the end point.
   std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override;
-  long halvedSteps() const override { return solver_->halvedSteps(); }
+  RunStatistics statistics() const override {
+    RunStatistics r;
+    r.halved_steps = solver_->halvedSteps();
+    return r;
+  }
   /// Continue another pendulum run of the same scene (a forecast from the twin's state): its
   /// drives, rope length and state; with another time step the accelerations and the
   /// generalized-alpha variables restart from its positions and velocities. Throws InputError

@@ -51,6 +51,23 @@ const char* warningName(int bit);
 extern const char* const kSeriesHeader;
 void writeSeriesRow(std::ostream& out, const SeriesValues& v);
 
+/// What a run counts (docs/cli.md, the summary line); zero where a model has no such thing.
+struct RunStatistics {
+  /// The subdomain reduction: subdomains started and wall time in rope mode updates [s]; the
+  /// invariant reduced rope: 1 subdomain (one basis).
+  int subdomains = 0;
+  double mode_update_seconds = 0.0;
+  long halved_steps = 0;  ///< steps taken as halves because Newton failed at the full step
+  /// Energy-consistent steps of a tension-only ANCF rope across slack/taut switches
+  /// (FullOrderSolver::step).
+  long energy_consistent_steps = 0;
+  /// Reduced rope: hand-overs to full order so far, the steps integrated at full order, and
+  /// whether the current step runs at full order.
+  long hand_overs = 0;
+  long full_order_steps = 0;
+  bool integrating_full_order = false;
+};
+
 class Simulation {
  public:
   virtual ~Simulation() = default;
@@ -91,19 +108,8 @@ class Simulation {
   /// Points along the deformed rope, top to end: per_element points per element of the model
   /// (interpolated with its shape functions), then the end point [m, world frame].
   virtual std::vector<Eigen::Vector3d> ropeCurve(int per_element) const = 0;
-  /// Subdomains started and wall time in rope mode updates (0 for a full-order run).
-  virtual int subdomains() const { return 0; }
-  virtual double modeUpdateSeconds() const { return 0.0; }
-  /// Steps taken as halves because Newton failed at the full step.
-  virtual long halvedSteps() const { return 0; }
-  /// Energy-consistent steps of a tension-only ANCF rope across slack/taut switches
-  /// (FullOrderSolver::step; 0 for the other models and a rope that stays taut).
-  virtual long energyConsistentSteps() const { return 0; }
-  /// Reduced rope: hand-overs to full order so far, the steps integrated at full order, and
-  /// whether the current step runs at full order (0, 0, false for the other models).
-  virtual long handOvers() const { return 0; }
-  virtual long fullOrderSteps() const { return 0; }
-  virtual bool integratingFullOrder() const { return false; }
+  /// What the run has counted so far (the summary line, the node's diagnostics).
+  virtual RunStatistics statistics() const = 0;
 
   /// Continue from the state of another simulation of the same scene and rope model (its rope,
   /// support, drives and time), e.g. a forecast copy built with another time step: with the

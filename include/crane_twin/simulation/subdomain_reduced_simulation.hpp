@@ -18,7 +18,7 @@
 // (docs/stability.md).
 #pragma once
 
-#include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/simulation/hand_over_simulation.hpp"
 #include "crane_twin/solvers/subdomain_reduced_solver.hpp"
 
 namespace crane_twin {
@@ -28,38 +28,16 @@ namespace crane_twin {
 int keptRopeModes(const CraneModel& model);
 int keptRopeModes(const Scene& scene);
 
-class SubdomainReducedSimulation final : public Simulation {
+class SubdomainReducedSimulation final : public HandOverSimulation {
  public:
   explicit SubdomainReducedSimulation(const CraneModel& model);
-  void initialize() override;
-  void step() override;
-  void setCommand(const CommandEntry& command) override;
-  double time() const override { return full_order_ ? full_.time() : solver_->state().t; }
-  SeriesValues series() const override;
-  void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
-              Eigen::Vector3d& jib_tip) const override {
-    if (full_order_) return full_.sample(payload, cab, jib_tip);
-    payload = solver_->nodePosition(full_.ropeNodes() - 1);
-    cab = full_.support().cabDisplacement(solver_->state().z);
-    jib_tip = full_.support().jibTipDisplacement(solver_->state().z);
-  }
-  int ropeNodes() const override { return full_.ropeNodes(); }
-  Eigen::Vector3d ropeNode(int j) const override {
-    return full_order_ ? full_.ropeNode(j) : solver_->nodePosition(j);
-  }
-  CoupledState fullState() const override {
-    return full_order_ ? full_.fullState() : solver_->fullState();
-  }
-  /// The full-order setup behind the run (model, rope, support, drives; slack-rope steps).
-  const CraneSimulation& crane() const { return full_; }
-  const CraneDrives& drives() const override { return full_.drives(); }
-  const RopeSupport& support() const override { return full_.support(); }
-  std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override {
-    return sampleRopeCurve(fullState().q, full_.rope().element().length, per_element);
-  }
-  int subdomains() const override { return solver_->statistics().subdomains; }
-  /// Hand-over thresholds: nodal axial strain / static strain under the end mass, and top
-  /// tension / hanging weight (payload, hook block, rope), with hysteresis.
+  /// Hand-over thresholds (HandOverSettings): nodal axial strain / static strain under the end
+  /// mass, and top tension / hanging weight (payload, hook block, rope), with hysteresis:
+  /// slack under 0.3 (strain, checked every 5 steps) and 0.3 (tension), taut above 0.6 and
+  /// 0.45, higher than the invariant basis's: a linearisation about a nearly slack rope is
+  /// degenerate. Hand-back trials every kHandBackCheckSteps full-order steps from the
+  /// hand-over on, while the hoist stands still.
+  static HandOverSettings handOverSettingsFor();
   static constexpr double kSlackFraction = 0.3, kTautFraction = 0.6;
   static constexpr double kSlackTensionFraction = 0.3, kTautTensionFraction = 0.45;
   static constexpr int kSlackCheckSteps = 5;
@@ -79,31 +57,37 @@ class SubdomainReducedSimulation final : public Simulation {
   /// Hoisting faster than kHoistStepStrain x the static strain under the end mass per step
   /// (|dL| / L per step) runs at full order until the hoist stops (docs/model.md).
   static constexpr double kHoistStepStrain = 0.25;
-  /// Steps integrated at full order while the rope was slack, and the hand-overs to it.
-  long fullOrderSteps() const override { return full_order_steps_; }
-  long handOvers() const override { return slack_episodes_ + fast_hoist_episodes_; }
-  int slackEpisodes() const { return slack_episodes_; }
+  int slackEpisodes() const { return static_cast<int>(handOvers(Cause::slack)); }
   /// Hand-back trials refused because the new basis dropped too much of the state's energy.
   long refusedHandBacks() const { return refused_hand_backs_; }
   /// Hand-overs to full order because the length changed too fast per step.
-  long fastHoistEpisodes() const { return fast_hoist_episodes_; }
-  bool integratingFullOrder() const override { return full_order_; }
-  double modeUpdateSeconds() const override { return solver_->statistics().mode_update_seconds; }
+  long fastHoistEpisodes() const { return handOvers(Cause::fast_hoist); }
   const SubdomainReducedSolver& solver() const { return *solver_; }
 
+ protected:
+  bool startReduced(const CoupledState& full) override;
+  Verdict reducedStep() override;
+  bool tryTakeOver(const CoupledState& full) override;
+  CoupledState handOverState() override { return solver_->fullState(); }
+  bool restartsAtHandOver() const override { return false; }
+  double reducedTime() const override { return solver_->state().t; }
+  const Eigen::VectorXd& reducedSupport() const override { return solver_->state().z; }
+  Eigen::Vector3d reducedNode(int j) const override { return solver_->nodePosition(j); }
+  CoupledState expandReduced() const override { return solver_->fullState(); }
+  SeriesValues reducedSeries() const override { return full_.seriesOf(solver_->fullState()); }
+  double reducedLength() const override { return full_.ropeLength(); }
+  double reducedTopTension() const override { return solver_->topTension(); }
+  double reducedMinStrain() const override { return solver_->minNodalStrain(); }
+  int reducedSubdomains() const override { return solver_->statistics().subdomains; }
+  double reducedModeUpdateSeconds() const override {
+    return solver_->statistics().mode_update_seconds;
+  }
+
  private:
-  CraneSimulation full_;  ///< model setup, initial state, and the slack-rope steps
   std::unique_ptr<SubdomainReducedSolver> solver_;
-  double weight_ = 0.0;      ///< hanging weight [N]
-  double end_strain_ = 0.0;  ///< static axial strain under the end mass alone
-  long reduced_steps_ = 0;
-  bool full_order_ = false;
-  long full_order_steps_ = 0;
-  int slack_episodes_ = 0;
   double basis_length_ = -1.0;  ///< rope length of the last full basis update while hoisting
-  int hoist_subdomain_ = -1;
-  long fast_hoist_episodes_ = 0;
-  long refused_hand_backs_ = 0;  ///< the solver's subdomain count after the last hoisting restart
+  int hoist_subdomain_ = -1;    ///< the solver's subdomain count after the last hoisting restart
+  long refused_hand_backs_ = 0;
 };
 
 }  // namespace crane_twin

@@ -1,0 +1,136 @@
+// HandOverSimulation: the one hand-over mechanism every reduced rope plugs into (docs/model.md
+// "Hand-over to full order"). It owns the full-order model of the scene (CraneSimulation: rope,
+// support, drives, initial state), one clock, one sampling and output path, and the switch
+// between the reduced rope and full order:
+//  - reduced, each step: the drives advance, the reduced rope steps (reducedStep); the run hands
+//    its state over to full order when that step fails or asks for it (Verdict), when the top
+//    tension falls under slack_tension_fraction of the hanging weight, when (every
+//    strain_check_steps steps) a Gauss point's or node's axial strain falls under
+//    slack_strain_fraction of the static strain under the end mass or the reduced rope predicts
+//    slack (aboutToSlacken), and when its error indicator says the basis no longer carries the
+//    state (errorTooLarge);
+//  - at full order: after hand_back_dwell of simulated time and then every hand_back_steps steps
+//    (doubling after each refused trial, up to max_hand_back_interval), a hand-back trial: the
+//    rope taut (top tension above taut_tension_fraction of the weight, every node's strain above
+//    taut_strain_fraction of the end mass's static strain) and the reduced rope takes the state
+//    over (tryTakeOver: its own test that the projection loses nothing).
+// A start the reduced rope does not take over runs at full order from t = 0. The hanging weight
+// W = (m_end + mu L) g and the end mass's static strain m_end g / EA are the scene's.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "crane_twin/simulation/crane_simulation.hpp"
+
+namespace crane_twin {
+
+/// The thresholds and schedule of the hand-over (fractions of the hanging weight W and of the
+/// end mass's static strain; see each reduced rope's values and why).
+struct HandOverSettings {
+  double slack_tension_fraction = 0.1, taut_tension_fraction = 0.2;
+  double slack_strain_fraction = 0.1, taut_strain_fraction = 0.2;
+  int strain_check_steps = 10;       ///< reduced steps between strain checks
+  double hand_back_dwell = 1.0;      ///< simulated time at full order before the first trial [s]
+  int hand_back_steps = 20;          ///< full-order steps between trials at first
+  int max_hand_back_interval = 640;  ///< the interval doubles after each refused trial up to this
+};
+
+class HandOverSimulation : public Simulation {
+ public:
+  /// Why a run went to full order (counted per cause).
+  enum class Cause { start, slack, failure, indicator, fast_hoist };
+  /// What a reduced step reports: carried, or the full model must take the step just begun
+  /// (the reduced state is still at its start: a failed step, a hoist too fast for the basis).
+  enum class Verdict { carried, failed, fast_hoist };
+
+  void initialize() override;
+  void step() override;
+  void setCommand(const CommandEntry& command) override { full_.setCommand(command); }
+  double time() const override { return full_order_ ? full_.time() : reducedTime(); }
+  SeriesValues series() const override;
+  void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
+              Eigen::Vector3d& jib_tip) const override;
+  int ropeNodes() const override { return full_.ropeNodes(); }
+  Eigen::Vector3d ropeNode(int j) const override {
+    return full_order_ ? full_.ropeNode(j) : reducedNode(j);
+  }
+  CoupledState fullState() const override {
+    return full_order_ ? full_.fullState() : expandReduced();
+  }
+  const CraneDrives& drives() const override { return full_.drives(); }
+  const RopeSupport& support() const override { return full_.support(); }
+  std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override;
+  RunStatistics statistics() const override;
+  /// Hand-overs to full order so far, the steps integrated at full order, and whether the
+  /// current step runs at full order.
+  long handOvers() const;
+  long fullOrderSteps() const { return full_order_steps_; }
+  bool integratingFullOrder() const { return full_order_; }
+
+  /// The rope length being integrated [m] (the full rope's while at full order).
+  double ropeLength() const { return full_order_ ? full_.ropeLength() : reducedLength(); }
+  /// The full-order setup behind the run (model, rope, support, drives; the full-order steps).
+  const CraneSimulation& crane() const { return full_; }
+  const HandOverSettings& handOverSettings() const { return settings_; }
+  /// Hand-overs to full order for one cause.
+  long handOvers(Cause c) const { return hand_overs_[static_cast<int>(c)]; }
+
+ protected:
+  HandOverSimulation(const CraneModel& model, const HandOverSettings& settings);
+
+  // ---- what a reduced rope provides ------------------------------------------------------
+  /// Start the reduced rope on the scene's initial state `full` (full_ holds it): true where it
+  /// takes it over (default: the hand-back trial), false to start at full order. Resets the
+  /// reduced rope's own counters.
+  virtual bool startReduced(const CoupledState& full);
+  /// One reduced step of h (the drives have advanced); throws nothing: a failure is a Verdict.
+  virtual Verdict reducedStep() = 0;
+  /// Take over a full-coordinate state (full_'s current); false, nothing changed, where the
+  /// reduced rope cannot carry it.
+  virtual bool tryTakeOver(const CoupledState& full) = 0;
+  /// The full-coordinate state handed over to full order (the reduced state expanded).
+  virtual CoupledState handOverState() = 0;
+  /// Whether full order restarts its accelerations from the handed-over positions and
+  /// velocities (else it takes the expanded accelerations as they are).
+  virtual bool restartsAtHandOver() const = 0;
+  virtual double reducedTime() const = 0;
+  virtual const Eigen::VectorXd& reducedSupport() const = 0;  ///< the support coordinates z
+  virtual Eigen::Vector3d reducedNode(int j) const = 0;
+  virtual CoupledState expandReduced() const = 0;
+  virtual SeriesValues reducedSeries() const = 0;
+  virtual double reducedLength() const = 0;
+  virtual double reducedTopTension() const = 0;
+  virtual double reducedMinStrain() const = 0;
+  virtual long reducedHalvedSteps() const { return 0; }
+  /// Checked with the strain: the reduced rope foresees slack (default: never).
+  virtual bool aboutToSlacken() const { return false; }
+  /// Checked after every reduced step: the basis no longer carries the state (default: never).
+  virtual bool errorTooLarge(long /*steps*/) { return false; }
+  /// Subdomains of the run (the subdomain reduction's own count; default 1: one basis) and the
+  /// wall time in its mode updates [s].
+  virtual int reducedSubdomains() const { return 1; }
+  virtual double reducedModeUpdateSeconds() const { return 0.0; }
+
+  /// Hand the state `full` over to full order, for cause c.
+  void handOver(const CoupledState& full, Cause c);
+  /// The hand-back trial (taut rope, then tryTakeOver).
+  bool tryHandBack();
+  /// Continue the mechanism's state (clock, counters, schedule) of another run of this kind.
+  void continueHandOverFrom(const HandOverSimulation& other);
+
+  CraneSimulation full_;
+  HandOverSettings settings_;
+  double weight_ = 0.0;      ///< hanging weight (m_end + mu L) g [N]
+  double end_strain_ = 0.0;  ///< static axial strain under the end mass alone
+  bool full_order_ = false;
+  long steps_ = 0;  ///< reduced steps begun
+
+ private:
+  long full_order_steps_ = 0;
+  std::vector<long> hand_overs_ = std::vector<long>(5, 0);
+  double full_since_ = 0.0;  ///< time of the last hand-over [s]
+  int hand_back_interval_ = 0, hand_back_countdown_ = 0;
+};
+
+}  // namespace crane_twin

@@ -1,0 +1,133 @@
+#include "crane_twin/simulation/hand_over_simulation.hpp"
+
+#include <algorithm>
+
+namespace crane_twin {
+
+HandOverSimulation::HandOverSimulation(const CraneModel& model, const HandOverSettings& settings)
+    : full_(model), settings_(settings) {}
+
+void HandOverSimulation::initialize() {
+  const CraneModel& m = full_.model();
+  weight_ = (m.end_mass + m.ropeMass()) * m.scene.gravity;
+  end_strain_ = m.end_mass * m.scene.gravity / m.rope.axialStiffnessAt(m.scene.rope.length);
+  full_order_ = false;
+  steps_ = full_order_steps_ = 0;
+  std::fill(hand_overs_.begin(), hand_overs_.end(), 0);
+  const CoupledState f = full_.initialState();  // the rope at the scene's length
+  full_.setState(f);
+  // A start the reduced rope cannot carry (a stress-free rope, a velocity given to the payload
+  // alone) runs at full order until the hand-back criteria hold.
+  if (!startReduced(f)) handOver(f, Cause::start);
+}
+
+bool HandOverSimulation::startReduced(const CoupledState&) { return tryHandBack(); }
+
+void HandOverSimulation::handOver(const CoupledState& full, Cause c) {
+  if (restartsAtHandOver()) {
+    full_.restartFrom(full);
+  } else {
+    full_.setState(full);
+  }
+  full_since_ = full.t;
+  hand_back_interval_ = hand_back_countdown_ = settings_.hand_back_steps;
+  full_order_ = true;
+  ++hand_overs_[static_cast<int>(c)];
+}
+
+bool HandOverSimulation::tryHandBack() {
+  const CoupledState& f = full_.state();
+  if (weight_ > 0.0) {
+    if (full_.solver().topTension(f) < settings_.taut_tension_fraction * weight_) return false;
+    if (AncfRope::minNodalStrain(f.q) < settings_.taut_strain_fraction * end_strain_) return false;
+  }
+  if (!tryTakeOver(f)) return false;
+  full_order_ = false;
+  return true;
+}
+
+void HandOverSimulation::step() {
+  if (full_order_) {
+    full_.step();
+    ++full_order_steps_;
+    // Trials every hand_back_steps steps after the dwell, the interval doubling after each
+    // refused trial up to max_hand_back_interval (a scene that stays violent costs little).
+    if (full_.time() - full_since_ >= settings_.hand_back_dwell && --hand_back_countdown_ <= 0) {
+      if (!tryHandBack()) {
+        hand_back_interval_ = std::min(2 * hand_back_interval_, settings_.max_hand_back_interval);
+        hand_back_countdown_ = hand_back_interval_;
+      }
+    }
+    return;
+  }
+  full_.advanceDrives(reducedTime(), full_.model().scene.time_step, reducedSupport());
+  ++steps_;
+  const Verdict verdict = reducedStep();
+  if (verdict != Verdict::carried) {
+    // The reduced state is at the step's start: the full model takes the step.
+    handOver(handOverState(), verdict == Verdict::failed ? Cause::failure : Cause::fast_hoist);
+    full_.stepAfterDrives();
+    ++full_order_steps_;
+    return;
+  }
+  const bool slack =
+      weight_ > 0.0 &&
+      (reducedTopTension() < settings_.slack_tension_fraction * weight_ ||
+       (steps_ % settings_.strain_check_steps == 0 &&
+        (reducedMinStrain() < settings_.slack_strain_fraction * end_strain_ || aboutToSlacken())));
+  if (slack) {
+    handOver(handOverState(), Cause::slack);
+    return;
+  }
+  if (errorTooLarge(steps_)) handOver(handOverState(), Cause::indicator);
+}
+
+SeriesValues HandOverSimulation::series() const {
+  SeriesValues v = full_order_ ? full_.series() : reducedSeries();
+  v.subdomains = reducedSubdomains();
+  v.full_order_steps = full_order_steps_;
+  return v;
+}
+
+void HandOverSimulation::sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
+                                Eigen::Vector3d& jib_tip) const {
+  if (full_order_) return full_.sample(payload, cab, jib_tip);
+  payload = reducedNode(full_.ropeNodes() - 1);
+  cab = full_.support().cabDisplacement(reducedSupport());
+  jib_tip = full_.support().jibTipDisplacement(reducedSupport());
+}
+
+std::vector<Eigen::Vector3d> HandOverSimulation::ropeCurve(int per_element) const {
+  return sampleRopeCurve(fullState().q, ropeLength() / full_.rope().elements(), per_element);
+}
+
+RunStatistics HandOverSimulation::statistics() const {
+  const RunStatistics f = full_.statistics();
+  RunStatistics r;
+  r.subdomains = reducedSubdomains();
+  r.mode_update_seconds = reducedModeUpdateSeconds();
+  r.halved_steps = reducedHalvedSteps() + f.halved_steps;
+  r.energy_consistent_steps = f.energy_consistent_steps;
+  r.hand_overs = handOvers();
+  r.full_order_steps = full_order_steps_;
+  r.integrating_full_order = full_order_;
+  return r;
+}
+
+long HandOverSimulation::handOvers() const {
+  long n = 0;
+  for (long k : hand_overs_) n += k;
+  return n;
+}
+
+void HandOverSimulation::continueHandOverFrom(const HandOverSimulation& o) {
+  weight_ = o.weight_;
+  end_strain_ = o.end_strain_;
+  full_order_ = o.full_order_;
+  steps_ = o.steps_;
+  full_since_ = o.full_since_;
+  hand_back_interval_ = o.hand_back_interval_;
+  hand_back_countdown_ = o.hand_back_countdown_;
+}
+
+}  // namespace crane_twin
