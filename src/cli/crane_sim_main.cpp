@@ -60,12 +60,8 @@ int runInfo(const SceneArgs& a) {
   if (m.structure && sc.structure_model == "modal") structureCoords = sc.structure_modes;
   if (m.structure && sc.structure_model == "full") structureCoords = m.structure->free_dofs;
   std::printf("integrated_structure_coordinates,%d\n", structureCoords);
-  const bool pendulum = sc.rope.model == "pendulum";
-  std::printf("integrated_rope_coordinates,%d\n",
-              pendulum ? ct::PendulumRope::kDofs + (sc.hasRigging() ? 3 : 0)
-              : sc.rope.model != "reduced" || sc.hasRigging() ? m.ropeDofs()
-              : sc.rope.reduction == "subdomains"             ? ct::keptRopeModes(m) + 3
-                                                              : ct::invariantRopeCoordinates(m));
+  const bool pendulum = ct::ropeModelOf(sc) == ct::RopeModelKind::pendulum;
+  std::printf("integrated_rope_coordinates,%d\n", ct::integratedRopeCoordinates(m));
   // The pendulum is a straight bar: it has no bending whatever rope.bending says.
   std::printf("rope_bending,%s\n", sc.rope.bending && !pendulum ? "on" : "off");
   std::printf("rope_damping_s,%g\n", sc.rope.damping);

@@ -94,19 +94,45 @@ std::vector<bool> Simulation::fullStatePositionBlocks() const {
   return b;
 }
 
-std::unique_ptr<Simulation> makeSimulation(const CraneModel& model) {
-  const Scene& sc = model.scene;
-  if (sc.rope.model == "full") return std::make_unique<CraneSimulation>(model);
+RopeModelKind ropeModelOf(const Scene& sc) {
+  if (sc.rope.model == "full") return RopeModelKind::full;
+  if (sc.rope.model == "pendulum") return RopeModelKind::pendulum;
+  if (sc.rope.model != "reduced") {
+    throw InputError(sc.file + ": key 'rope.model': '" + sc.rope.model + "' is not built yet");
+  }
   // The reduced ropes' bases carry no rigging yet: a scene with one runs at full order, the
   // answer the reduced rope must give (docs/model.md "Hook block").
-  if (sc.rope.model == "reduced" && sc.hasRigging())
-    return std::make_unique<CraneSimulation>(model);
-  if (sc.rope.model == "reduced" && sc.rope.reduction == "subdomains") {
-    return std::make_unique<SubdomainReducedSimulation>(model);
+  if (sc.hasRigging()) return RopeModelKind::full;
+  return sc.rope.reduction == "subdomains" ? RopeModelKind::subdomain_reduced
+                                           : RopeModelKind::invariant_reduced;
+}
+
+int integratedRopeCoordinates(const CraneModel& m) {
+  switch (ropeModelOf(m.scene)) {
+    case RopeModelKind::pendulum:
+      return PendulumRope::kDofs + (m.scene.hasRigging() ? 3 : 0);
+    case RopeModelKind::subdomain_reduced:
+      return keptRopeModes(m) + 3;
+    case RopeModelKind::invariant_reduced:
+      return invariantRopeCoordinates(m);
+    case RopeModelKind::full:
+      break;
   }
-  if (sc.rope.model == "reduced") return std::make_unique<InvariantReducedSimulation>(model);
-  if (sc.rope.model == "pendulum") return std::make_unique<PendulumCraneSimulation>(model);
-  throw InputError(sc.file + ": key 'rope.model': '" + sc.rope.model + "' is not built yet");
+  return m.ropeDofs();
+}
+
+std::unique_ptr<Simulation> makeSimulation(const CraneModel& model) {
+  switch (ropeModelOf(model.scene)) {
+    case RopeModelKind::full:
+      return std::make_unique<CraneSimulation>(model);
+    case RopeModelKind::invariant_reduced:
+      return std::make_unique<InvariantReducedSimulation>(model);
+    case RopeModelKind::subdomain_reduced:
+      return std::make_unique<SubdomainReducedSimulation>(model);
+    case RopeModelKind::pendulum:
+      break;
+  }
+  return std::make_unique<PendulumCraneSimulation>(model);
 }
 
 }  // namespace crane_twin

@@ -11,6 +11,7 @@
 namespace crane_twin {
 
 struct CraneModel;
+struct Scene;
 struct CommandEntry;
 struct CoupledState;
 class CraneDrives;
@@ -132,6 +133,16 @@ class Simulation {
   /// `t,node,x,y,z` rows for every rope node.
   void writeNodeRows(std::ostream& out) const;
 };
+
+/// The rope model a scene runs (the one rule; makeSimulation and crane_sim info read it).
+enum class RopeModelKind { full, invariant_reduced, subdomain_reduced, pendulum };
+/// rope.model full -> full; reduced -> invariant_reduced, or subdomain_reduced with
+/// rope.reduction: subdomains, or full where a hook rigging hangs under the block (the reduced
+/// ropes' bases carry no rigging yet: docs/model.md "Hook block"); pendulum -> pendulum.
+RopeModelKind ropeModelOf(const Scene& scene);
+/// The rope coordinates a run of the scene integrates (the reduced ropes' basis size, the
+/// pendulum's points, or the ANCF rope's).
+int integratedRopeCoordinates(const CraneModel& model);
 
 /// The simulation the scene's rope.model asks for (CraneSimulation for full,
 /// InvariantReducedSimulation for reduced, SubdomainReducedSimulation for reduced with
