@@ -8,7 +8,6 @@
 #include <sstream>
 
 #include "crane_twin/io/input_error.hpp"
-#include "crane_twin/twin/sway_correction.hpp"
 #include "node_params.hpp"
 
 namespace crane_twin {
@@ -58,8 +57,7 @@ TwinAdapter::TwinAdapter(ros::NodeHandle nh, const TwinSettings& settings,
       frames_(frames),
       base_position_(base_position),
       base_yaw_(base_yaw),
-      follower_(settings.follower) {
-  settings_.estimator.check();
+      runtime_(settings.estimator, settings.follower) {
   joint_sub_ = nh_.subscribe("crane/measured_joint_states", 200, &TwinAdapter::onJoints, this);
   payload_sub_ = nh_.subscribe("crane/measured_payload", 50, &TwinAdapter::onPayload, this);
   tension_sub_ = nh_.subscribe("crane/measured_tension", 50, &TwinAdapter::onTension, this);
@@ -70,18 +68,10 @@ TwinAdapter::TwinAdapter(ros::NodeHandle nh, const TwinSettings& settings,
 
 void TwinAdapter::restart(const CraneModel& model, const Simulation& sim) {
   crane_ = model.scene.crane ? &*model.scene.crane : nullptr;
-  end_mass_ = model.hangingPointMass();
-  hook_mass_ = model.scene.hookBlockMass();
-  gravity_ = model.scene.gravity;
-  follower_.clear();
-  modes_ = swayCouplingModes(sim);
-  estimator_ = std::make_unique<SwayEstimator>(settings_.estimator, modeMotionNorms(sim, modes_));
+  runtime_.restart(model, sim);
   joints_in_.clear();
   payload_in_.clear();
   tension_in_.clear();
-  last_payload_t_ = -1e300;
-  tension_ratio_ = 1.0;
-  tension_seen_ = false;
   if (forecast_job_.valid()) forecast_job_.wait();  // it runs on the old forecaster
   forecast_job_ = {};
   last_forecast_ = PayloadForecast{};
@@ -122,12 +112,12 @@ void TwinAdapter::onPayload(const geometry_msgs::PointStamped::ConstPtr& m) {
   } else if (f == "world") {
     base = Eigen::AngleAxisd(-base_yaw_, Eigen::Vector3d::UnitZ()) * (p - base_position_);
   } else {
-    ++payload_refused_;
+    runtime_.countRefusedPayload();
     return warn("crane/measured_payload in frame '" + f + "' refused: give 'world' or '" +
                 frames_.base() + "'");
   }
   if (!base.allFinite()) {
-    ++payload_refused_;
+    runtime_.countRefusedPayload();
     return warn("crane/measured_payload with a non-finite coordinate refused");
   }
   payload_in_.emplace_back(m->header.stamp, base);
@@ -144,11 +134,11 @@ void TwinAdapter::onTension(const std_msgs::Float64::ConstPtr& m) {
 }
 
 CommandEntry TwinAdapter::followCommand(const Simulation& sim) const {
-  return follower_.command(sim.time(), sim.drives(), *crane_);
+  return runtime_.follower().command(sim.time(), sim.drives(), *crane_);
 }
 
 CommandEntry TwinAdapter::measuredRates(double t) const {
-  const Eigen::Vector3d r = follower_.holdRates(t);
+  const Eigen::Vector3d r = runtime_.follower().holdRates(t);
   CommandEntry c;
   c.slew_rate = r.x();
   c.trolley_speed = r.y();
@@ -189,46 +179,19 @@ void TwinAdapter::afterStep(Simulation& sim, double h,
       continue;
     }
     if (velocities) s.velocity = v;
-    const std::string why = follower_.add(s, *crane_);
+    const std::string why = runtime_.addJoints(s);
     if (!why.empty()) warn("crane/measured_joint_states refused: " + why);
   }
-  estimator_->predict(h);  // the error's covariance follows at the next update
+  // Payload positions and tensions, each at the twin time it was measured, then the runtime.
   while (!payload_in_.empty()) {
-    const double age = std::min(now - when(payload_in_.front().first), 1.0);
-    const Eigen::Vector3d z = payload_in_.front().second;
+    runtime_.addPayload(when(payload_in_.front().first), payload_in_.front().second);
     payload_in_.pop_front();
-    // The twin's payload when the measurement was taken, p(t - age) = p - v age.
-    const SeriesValues v = sim.series();
-    const Eigen::Vector3d p = v.payload - age * v.payload_velocity;
-    const SwayUpdate u =
-        estimator_->update(z.head<2>(), p.head<2>(), swayModelAt(sim, v, modes_, gravity_));
-    if (u.reacquired) warn("sway estimator re-acquiring: 10 payload measurements refused in a row");
-    last_update_ = u;
-    last_payload_t_ = now;
-    if (!u.accepted) {
-      ++payload_refused_;
-      warn("payload measurement beyond the innovation gate refused (" +
-           std::to_string(u.innovation.norm()) + " m from the twin)");
-      continue;
-    }
-    ++payload_updates_;
-    try {
-      applyTwinCorrection(sim, u, modes_);
-    } catch (const std::exception& e) {
-      ++correction_failures_;
-      warn(std::string("sway correction not applied: ") + e.what());
-    }
   }
-  if (!tension_in_.empty()) {
-    const double twin_tension = sim.series().rope_top_tension;
-    while (!tension_in_.empty()) {
-      const double r = twin_tension > 0.0 ? tension_in_.front() / twin_tension : 1.0;
-      tension_in_.pop_front();
-      // Exponential filter over about 10 measurements.
-      tension_ratio_ = tension_seen_ ? tension_ratio_ + 0.1 * (r - tension_ratio_) : r;
-      tension_seen_ = true;
-    }
+  while (!tension_in_.empty()) {
+    runtime_.addTension(tension_in_.front());
+    tension_in_.pop_front();
   }
+  runtime_.afterStep(sim, h, [this](const std::string& what) { warn(what); });
 }
 
 void TwinAdapter::publish(const Simulation& sim, const ros::Time& stamp,
@@ -243,7 +206,7 @@ void TwinAdapter::publish(const Simulation& sim, const ros::Time& stamp,
   // The payload's horizontal covariance H P H^T (the filter's, propagated to now); row-major
   // 6 x 6 (x, y, z, rot x, rot y, rot z): the vertical position is not estimated (the
   // measurement noise stands in), nor the rotation.
-  const Eigen::Matrix2d C = estimator_->payloadCovariance(swayModelAt(sim, row, modes_, gravity_));
+  const Eigen::Matrix2d C = runtime_.payloadCovariance(sim, row);
   e.pose.covariance[0] = C(0, 0);
   e.pose.covariance[1] = C(0, 1);
   e.pose.covariance[6] = C(1, 0);
@@ -311,29 +274,30 @@ void TwinAdapter::diagnose(const Simulation& sim, diagnostic_msgs::DiagnosticSta
   const double t = sim.time();
   addKeyValue(d, "input", settings_.measured_input ? "measured" : "commands");
   if (settings_.measured_input) {
-    addNumber(d, "joint_input_age_s", follower_.age(t));
+    const MeasuredJointFollower& follower = runtime_.follower();
+    addNumber(d, "joint_input_age_s", follower.age(t));
     addKeyValue(d, "joint_input",
-                !follower_.hasSample() ? "none yet"
-                : follower_.stale(t)   ? "stale"
-                                       : "fresh");
-    addNumber(d, "joint_samples_refused", static_cast<double>(follower_.refused()));
-    if (follower_.stale(t)) warn_level("measured joint input stale or missing");
+                !follower.hasSample() ? "none yet"
+                : follower.stale(t)   ? "stale"
+                                      : "fresh");
+    addNumber(d, "joint_samples_refused", static_cast<double>(follower.refused()));
+    if (follower.stale(t)) warn_level("measured joint input stale or missing");
   }
-  const bool closed = t - last_payload_t_ <= settings_.payload_timeout;
+  const bool closed = t - runtime_.lastPayloadTime() <= settings_.payload_timeout;
   addKeyValue(d, "sway_estimator",
               closed ? "closed loop (payload measurements)" : "open loop (no payload measurement)");
-  addNumber(d, "sway_uncertainty_m", estimator_->positionSigma());
-  addNumber(d, "structure_modes_estimated", static_cast<double>(modes_.size()));
-  addNumber(d, "innovation_m", last_update_.innovation.norm());
-  addNumber(d, "normalized_innovation", last_update_.normalized);
-  addNumber(d, "payload_updates", static_cast<double>(payload_updates_));
-  addNumber(d, "payload_measurements_refused", static_cast<double>(payload_refused_));
-  addNumber(d, "sway_corrections_failed", static_cast<double>(correction_failures_));
-  if (tension_seen_) {
-    addNumber(d, "tension_ratio_measured_to_twin", tension_ratio_);
+  addNumber(d, "sway_uncertainty_m", runtime_.estimator().positionSigma());
+  addNumber(d, "structure_modes_estimated", static_cast<double>(runtime_.modes().size()));
+  addNumber(d, "innovation_m", runtime_.lastUpdate().innovation.norm());
+  addNumber(d, "normalized_innovation", runtime_.lastUpdate().normalized);
+  addNumber(d, "payload_updates", static_cast<double>(runtime_.payloadUpdates()));
+  addNumber(d, "payload_measurements_refused", static_cast<double>(runtime_.payloadRefused()));
+  addNumber(d, "sway_corrections_failed", static_cast<double>(runtime_.correctionFailures()));
+  if (runtime_.tensionSeen()) {
+    addNumber(d, "tension_ratio_measured_to_twin", runtime_.tensionRatio());
     // The hanging mass the measured tension implies, less the hook block.
-    addNumber(d, "payload_mass_estimate_kg", tension_ratio_ * end_mass_ - hook_mass_);
-    if (std::abs(tension_ratio_ - 1.0) > 0.05) {
+    addNumber(d, "payload_mass_estimate_kg", runtime_.payloadMassEstimate());
+    if (std::abs(runtime_.tensionRatio() - 1.0) > 0.05) {
       warn_level("measured tension differs from the twin's by more than 5 % (~set_payload?)");
     }
   }

@@ -21,6 +21,7 @@
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/twin/payload_forecast.hpp"
 #include "crane_twin/twin/sway_estimator.hpp"
+#include "crane_twin/twin/twin_runtime.hpp"
 #include "ros_messages.hpp"
 
 namespace crane_twin {
@@ -81,10 +82,7 @@ class TwinAdapter {
   Eigen::Vector3d base_position_;
   double base_yaw_ = 0.0;
   const CraneDescription* crane_ = nullptr;  ///< of the current model (none: crane: none)
-  double end_mass_ = 0.0, hook_mass_ = 0.0, gravity_ = 9.81;
-  MeasuredJointFollower follower_;
-  std::vector<int> modes_;  ///< structure modes in the estimator
-  std::unique_ptr<SwayEstimator> estimator_;
+  TwinRuntime runtime_;  ///< the follower, the estimator and the filters (ROS-free)
   std::unique_ptr<PayloadForecaster> forecaster_;
   std::string forecast_error_;
 
@@ -94,11 +92,6 @@ class TwinAdapter {
   ros::Subscriber joint_sub_, payload_sub_, tension_sub_;
   ros::Publisher estimate_pub_, forecast_pub_;
 
-  double last_payload_t_ = -1e300;  ///< twin time of the last payload measurement
-  SwayUpdate last_update_;
-  long payload_updates_ = 0, payload_refused_ = 0, correction_failures_ = 0;
-  double tension_ratio_ = 1.0;  ///< filtered measured / twin top tension
-  bool tension_seen_ = false;
   ros::WallTime last_forecast_wall_, last_warn_wall_;
   PayloadForecast last_forecast_;
   /// The forecast running on its own thread (the node's steps go on meanwhile).

@@ -1,0 +1,120 @@
+// TwinRuntime (include/crane_twin/twin/twin_runtime.hpp): the twin's orchestration between steps
+// without ROS: latency-compensated payload updates, the innovation gate, the correction applied
+// to the simulation, the tension filter and the mass it implies, joint samples to the follower.
+#include "crane_twin/twin/twin_runtime.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "crane_twin/io/scene.hpp"
+#include "crane_twin/simulation/simulation.hpp"
+
+namespace crane_twin {
+namespace {
+
+const std::string kScenes = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/";
+
+CraneModel live(std::vector<std::string> sets) {
+  sets.insert(sets.begin(), {"rope.elements=40", "structure.modes=20"});
+  return buildCraneModel(loadScene(kScenes + "t8036_live.yaml", sets));
+}
+
+struct TwinRun {
+  CraneModel model;
+  std::unique_ptr<Simulation> sim;
+  TwinRuntime runtime{SwayEstimatorSettings{}, JointFollowerSettings{}};
+  std::vector<std::string> warnings;
+  explicit TwinRun(std::vector<std::string> sets) : model(live(std::move(sets))) {
+    sim = makeSimulation(model);
+    sim->initialize();
+    runtime.restart(model, *sim);
+  }
+  void step() {
+    sim->step();
+    runtime.afterStep(*sim, model.scene.time_step,
+                      [this](const std::string& w) { warnings.push_back(w); });
+  }
+};
+
+TEST(TwinRuntime, AMeasurementTakenEarlierIsComparedWithTheTwinThen) {
+  // The swinging twin's own payload 0.2 s ago, p - v 0.2 (to first order), measured then:
+  // accepted with an innovation of second order only.
+  TwinRun r({"initial.swing_deg=3"});
+  for (int k = 0; k < 200; ++k) r.step();
+  const SeriesValues v = r.sim->series();
+  const double age = 0.2;
+  r.runtime.addPayload(r.sim->time() - age, v.payload - age * v.payload_velocity);
+  r.step();
+  ASSERT_EQ(r.runtime.payloadUpdates(), 1);
+  EXPECT_TRUE(r.runtime.lastUpdate().accepted);
+  // One step later the twin moved by v h: the innovation is that much, not v age.
+  const double moved = v.payload_velocity.head<2>().norm() * r.model.scene.time_step;
+  EXPECT_LT(r.runtime.lastUpdate().innovation.norm(), 2.0 * moved + 1e-6);
+  EXPECT_GT(v.payload_velocity.head<2>().norm() * age, 10.0 * (2.0 * moved + 1e-6));
+  EXPECT_TRUE(r.warnings.empty());
+}
+
+TEST(TwinRuntime, AnAcceptedMeasurementPullsTheTwinTowardItAndAFarOneIsRefused) {
+  TwinRun r({});
+  for (int k = 0; k < 20; ++k) r.step();
+  const Eigen::Vector3d p = r.sim->series().payload;
+  const Eigen::Vector3d z = p + Eigen::Vector3d(0.05, -0.03, 0.0);
+  r.runtime.addPayload(r.sim->time(), z);
+  r.step();
+  ASSERT_EQ(r.runtime.payloadUpdates(), 1);
+  EXPECT_EQ(r.runtime.correctionFailures(), 0);
+  const Eigen::Vector3d after = r.sim->series().payload;
+  EXPECT_LT((after - z).head<2>().norm(), 0.7 * (p - z).head<2>().norm());
+  // 50 m away: beyond the gate, refused, said so, the twin untouched by it.
+  const Eigen::Vector3d before = r.sim->series().payload;
+  r.runtime.addPayload(r.sim->time(), before + Eigen::Vector3d(50.0, 0.0, 0.0));
+  r.step();
+  EXPECT_EQ(r.runtime.payloadUpdates(), 1);
+  EXPECT_EQ(r.runtime.payloadRefused(), 1);
+  ASSERT_FALSE(r.warnings.empty());
+  EXPECT_NE(r.warnings.back().find("innovation gate"), std::string::npos) << r.warnings.back();
+  EXPECT_LT((r.sim->series().payload - before).norm(), 0.05);
+}
+
+TEST(TwinRuntime, TheTensionFilterFindsTheLoadTheRopeCarries) {
+  // A rope carrying 20 % more than the twin's: the ratio and the implied payload mass.
+  TwinRun r({});
+  r.step();
+  EXPECT_FALSE(r.runtime.tensionSeen());
+  EXPECT_DOUBLE_EQ(r.runtime.tensionRatio(), 1.0);
+  for (int k = 0; k < 50; ++k) {
+    r.runtime.addTension(1.2 * r.sim->series().rope_top_tension);
+    r.step();
+  }
+  ASSERT_TRUE(r.runtime.tensionSeen());
+  EXPECT_NEAR(r.runtime.tensionRatio(), 1.2, 0.01);
+  const double expected = 1.2 * r.model.hangingPointMass() - r.model.scene.hookBlockMass();
+  EXPECT_NEAR(r.runtime.payloadMassEstimate(), expected, 0.01 * expected);
+}
+
+TEST(TwinRuntime, JointSamplesReachTheFollowerAndABadOneIsRefused) {
+  TwinRun r({});
+  JointSample s;
+  s.t = r.sim->time();
+  s.position = Eigen::Vector3d(0.1, 40.0, 30.0);
+  EXPECT_EQ(r.runtime.addJoints(s), "");
+  EXPECT_TRUE(r.runtime.follower().hasSample());
+  s.position.x() = std::nan("");
+  EXPECT_NE(r.runtime.addJoints(s), "");
+}
+
+TEST(TwinRuntime, AStepBeforeRestartIsAnError) {
+  TwinRuntime t{SwayEstimatorSettings{}, JointFollowerSettings{}};
+  const CraneModel m = live({});
+  std::unique_ptr<Simulation> sim = makeSimulation(m);
+  sim->initialize();
+  EXPECT_THROW(t.afterStep(*sim, 0.005, [](const std::string&) {}), std::logic_error);
+  SwayEstimatorSettings bad;
+  bad.gate = -1.0;
+  EXPECT_THROW((TwinRuntime{bad, JointFollowerSettings{}}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace crane_twin
