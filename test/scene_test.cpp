@@ -89,8 +89,10 @@ TEST(Scene, OutOfRangeIsRefused) {
   const std::string p = writeScene("good.yaml", kGood);
   expectRefused(p, {"payload.mass=-1"}, {p, "payload.mass", ">= 0", "-1"});
   expectRefused(p, {"rope.elements=0"}, {p, "rope.elements", "0"});
-  expectRefused(p, {"rope.mode_fraction=0"}, {p, "rope.mode_fraction", "(0, 1]"});
-  expectRefused(p, {"rope.mode_fraction=1.5"}, {p, "rope.mode_fraction", "1.5"});
+  expectRefused(p, {"rope.reduction=subdomains", "rope.mode_fraction=0"},
+                {p, "rope.mode_fraction", "(0, 1]"});
+  expectRefused(p, {"rope.reduction=subdomains", "rope.mode_fraction=1.5"},
+                {p, "rope.mode_fraction", "1.5"});
   expectRefused(p, {"time_step=0"}, {p, "time_step"});
   expectRefused(p, {"time_step=.nan"}, {p, "time_step"});
   expectRefused(p, {"duration=.inf"}, {p, "duration"});
@@ -100,6 +102,20 @@ TEST(Scene, OutOfRangeIsRefused) {
                 {p, "rope.subdomain_frame", "fixed, corotational", "rotating"});
   expectRefused(p, {"rope.subdomain_rotation=0"}, {p, "rope.subdomain_rotation", "0"});
   expectRefused(p, {"time_step=2"}, {p, "time_step", "duration"});
+}
+
+TEST(Scene, SubdomainKeysAreRefusedWhereTheDefaultReducedRopeRuns) {
+  // They mean nothing to the rotation-invariant basis: refused, not silently ignored.
+  const std::string p = writeScene("good.yaml", kGood);
+  for (const char* set : {"rope.mode_fraction=0.5", "rope.subdomain_delta=0.1",
+                          "rope.mode_update=cold", "rope.subdomain_residual=10",
+                          "rope.subdomain_frame=corotational", "rope.subdomain_rotation=0.2"}) {
+    const std::string key = std::string(set).substr(0, std::string(set).find('='));
+    expectRefused(p, {"rope.model=reduced", set}, {p, key, "rope.reduction: subdomains"});
+    // Taken by the subdomain reduction, and by the models that do not reduce.
+    EXPECT_NO_THROW(loadScene(p, {"rope.model=reduced", "rope.reduction=subdomains", set})) << set;
+    EXPECT_NO_THROW(loadScene(p, {"rope.model=full", set})) << set;
+  }
 }
 
 TEST(Scene, UnknownKeyIsRefused) {

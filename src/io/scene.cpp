@@ -114,6 +114,18 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     r.safety_factor = n.number("safety_factor", 5.0, Bounds::closed(1.0, 100.0));
     r.reeving_length = n.number("reeving_length", 0.0, Bounds::closed(0.0, 5000.0));
     n.finish();
+    // The subdomain reduction's own keys mean nothing to the default reduced rope: refused there
+    // rather than silently ignored (docs/scenes.md).
+    if (r.model == "reduced" && r.reduction == "invariant") {
+      for (const char* key : {"mode_fraction", "subdomain_delta", "mode_update",
+                              "subdomain_residual", "subdomain_frame", "subdomain_rotation"}) {
+        if (n.has(key)) {
+          n.fail(key,
+                 "applies to the subdomain reduction only (rope.reduction: subdomains); the "
+                 "default reduced rope (rope.reduction: invariant) takes rope.mode_count");
+        }
+      }
+    }
     if (s.crane) {
       checkWithin(n, "length", r.length, s.crane->min_rope_length, s.crane->max_rope_length,
                   "rope length limits");
