@@ -71,7 +71,6 @@ void TwinAdapter::restart(const CraneModel& model, const Simulation& sim) {
   runtime_.restart(model, sim);
   joints_in_.clear();
   payload_in_.clear();
-  tension_in_.clear();
   if (forecast_job_.valid()) forecast_job_.wait();  // it runs on the old forecaster
   forecast_job_ = {};
   last_forecast_ = PayloadForecast{};
@@ -129,8 +128,7 @@ void TwinAdapter::onTension(const std_msgs::Float64::ConstPtr& m) {
     return warn("crane/measured_tension must be a finite force >= 0 N, got " +
                 std::to_string(m->data));
   }
-  tension_in_.push_back(m->data);
-  if (tension_in_.size() > 100) tension_in_.pop_front();
+  runtime_.addTension(m->data);  // no time of its own: straight to the runtime's queue
 }
 
 CommandEntry TwinAdapter::followCommand(const Simulation& sim) const {
@@ -182,14 +180,10 @@ void TwinAdapter::afterStep(Simulation& sim, double h,
     const std::string why = runtime_.addJoints(s);
     if (!why.empty()) warn("crane/measured_joint_states refused: " + why);
   }
-  // Payload positions and tensions, each at the twin time it was measured, then the runtime.
+  // Payload positions, each at the twin time it was measured, then the runtime.
   while (!payload_in_.empty()) {
     runtime_.addPayload(when(payload_in_.front().first), payload_in_.front().second);
     payload_in_.pop_front();
-  }
-  while (!tension_in_.empty()) {
-    runtime_.addTension(tension_in_.front());
-    tension_in_.pop_front();
   }
   runtime_.afterStep(sim, h, [this](const std::string& what) { warn(what); });
 }

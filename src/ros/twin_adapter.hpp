@@ -88,7 +88,6 @@ class TwinAdapter {
 
   std::deque<sensor_msgs::JointState> joints_in_;
   std::deque<std::pair<ros::Time, Eigen::Vector3d>> payload_in_;  ///< stamp, base frame
-  std::deque<double> tension_in_;
   ros::Subscriber joint_sub_, payload_sub_, tension_sub_;
   ros::Publisher estimate_pub_, forecast_pub_;
 

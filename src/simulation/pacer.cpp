@@ -47,18 +47,18 @@ Pacer::Decision Pacer::decide(double wall, double sim, double next_publish, doub
   }
   const double f = settings_.real_time_factor;
   if (f > 0.0) {
-    const double paced = anchor_sim_ + f * (wall - anchor_wall_);
+    double paced = anchor_sim_ + f * (wall - anchor_wall_);
     if (paced - sim > 0.25 * f + period) {  // too far behind: re-anchor, do not race
       ++overruns_;
       restart(wall, sim);
+      paced = sim;
     }
-    const double now_paced = anchor_sim_ + f * (wall - anchor_wall_);
-    d.target = std::min(d.target, now_paced);
+    d.target = std::min(d.target, paced);
     if (sim + half > d.target) {
       d.wait = Wait::wall;
       // Until the next step (or publication) is due on the wall clock, within [0.1, 10] ms.
-      d.sleep = std::clamp((std::min(next_publish, sim + settings_.time_step) - now_paced) / f,
-                           1e-4, 0.01);
+      d.sleep =
+          std::clamp((std::min(next_publish, sim + settings_.time_step) - paced) / f, 1e-4, 0.01);
     }
   }
   return d;

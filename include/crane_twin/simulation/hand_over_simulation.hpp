@@ -18,6 +18,7 @@
 // W = (m_end + mu L) g and the end mass's static strain m_end g / EA are the scene's.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <vector>
 
@@ -128,7 +129,7 @@ class HandOverSimulation : public Simulation {
 
  private:
   long full_order_steps_ = 0;
-  std::vector<long> hand_overs_ = std::vector<long>(5, 0);
+  std::array<long, static_cast<int>(Cause::fast_hoist) + 1> hand_overs_{};  ///< per Cause
   double full_since_ = 0.0;  ///< time of the last hand-over [s]
   int hand_back_interval_ = 0, hand_back_countdown_ = 0;
 };
