@@ -161,3 +161,51 @@ TEST(DiscreteGradient, SquaredLengthSecantIsTheSecantAndItsLimit) {
   EXPECT_NEAR(b.slope, 3.0 * 1.2 * 1.2, 1e-9);
   EXPECT_NEAR(b.curvature, 3.0 * 1.2, 1e-9);
 }
+
+TEST(DiscreteGradient, PointWorkEqualsTheDensityChangeAndLimitIsTheGradient) {
+  // One point of the rope (what the reduced rope integrates at its own Gauss points): the work
+  // fa . da + fb . db equals phi(a1, b1) - phi(a0, b0) across the slack edge, and for a1 = a0,
+  // b1 = b0 it is the density's gradient (ancfCablePoint).
+  const double EA = 2.2e7, EI = 40.0, l = 0.5;
+  std::mt19937 rng(11);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const auto vec = [&](double s) { return Eigen::Vector3d(s * n(rng), s * n(rng), s * n(rng)); };
+  int switches = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    // Stretches either side of the slack edge: |a| - 1 from -2e-4 to 2e-4.
+    const Eigen::Vector3d t0 = vec(1.0).normalized(), t1 = (t0 + vec(0.05)).normalized();
+    const double eps0 = 2e-4 * (2.0 * (trial % 7) / 6.0 - 1.0);
+    const double eps1 = 2e-4 * (2.0 * ((trial / 7) % 5) / 4.0 - 1.0);
+    const Eigen::Vector3d a0 = (1.0 + eps0) * t0, a1 = (1.0 + eps1) * t1;
+    const Eigen::Vector3d b0 = vec(0.3), b1 = b0 + vec(0.01);
+    if ((eps0 < -kSlackBand) != (eps1 < -kSlackBand)) ++switches;
+    CablePointDerivatives d;
+    ancfCablePointDiscreteGradient(EA, EI, l, a0, b0, a1, b1, false, d, true);
+    const double dU =
+        ancfCableEnergyDensity(EA, EI, a1, b1, true) - ancfCableEnergyDensity(EA, EI, a0, b0, true);
+    const double scale = std::abs(ancfCableEnergyDensity(EA, EI, a0, b0, true)) +
+                         std::abs(ancfCableEnergyDensity(EA, EI, a1, b1, true)) + 1e-3;
+    EXPECT_NEAR(d.fa.dot(a1 - a0) + d.fb.dot(b1 - b0), dU, 1e-9 * scale) << "trial " << trial;
+    // The limit: the gradient at the point.
+    CablePointDerivatives g, lim;
+    ancfCablePoint(EA, EI, a1, b1, false, g, true);
+    ancfCablePointDiscreteGradient(EA, EI, l, a1, b1, a1, b1, false, lim, true);
+    EXPECT_LT((lim.fa - g.fa).norm(), 1e-9 * (g.fa.norm() + 1.0)) << "trial " << trial;
+    EXPECT_LT((lim.fb - g.fb).norm(), 1e-9 * (g.fb.norm() + 1.0)) << "trial " << trial;
+  }
+  EXPECT_GT(switches, 20);  // the sample crosses the slack edge
+}
+
+TEST(DiscreteGradient, AxialSwitchWorkErrorIsTheTrapezoidsError) {
+  // Zero where both ends are in the linear range (the trapezoid is exact for a quadratic
+  // energy); across the edge, the closed form of a step from slack (-1e-3) to taut (eps1):
+  // trapezoid (N1 / 2) (eps1 + 1e-3) against the energy psi(eps1) = EA eps1^2 / 2 + EA d^2 / 6.
+  const double EA = 2.2e7, d = kSlackBand;
+  EXPECT_EQ(ancfAxialSwitchWorkError(EA, 1e-4, 3e-4), 0.0);
+  for (const double eps1 : {1e-4, 5e-4, 2e-3}) {
+    const double trapezoid = 0.5 * EA * eps1 * (eps1 + 1e-3);
+    const double exact = 0.5 * EA * eps1 * eps1 + EA * d * d / 6.0;
+    EXPECT_NEAR(ancfAxialSwitchWorkError(EA, -1e-3, eps1), std::abs(trapezoid - exact),
+                1e-12 * exact);
+  }
+}

@@ -237,60 +237,77 @@ void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12&
   if (K && EI != 0.0) mirrorUpper(*K);
 }
 
-void ancfElasticForceDiscreteGradient(const AncfCableProperties& p, const Vector12& e0,
-                                      const Vector12& e1, Vector12& Q, Matrix12* K) {
-  const GaussRule& gr = gaussRule(p.gauss_points);
-  Q.setZero();
-  if (K) K->setZero();
-  const double EA = p.axial_stiffness, EI = p.bending_stiffness, l = p.length;
-  const bool to = p.tension_only;
+void ancfCablePointDiscreteGradient(double EA, double EI, double l, const Eigen::Vector3d& a0,
+                                    const Eigen::Vector3d& b0, const Eigen::Vector3d& a1,
+                                    const Eigen::Vector3d& b1, bool hessian,
+                                    CablePointDerivatives& d, bool tension_only) {
   // The axial energy as a function of s = |a|^2: W(s) = psi(g - 1), W' = N / (2 g),
   // W'' = (N' g - N) / (4 g^3), g = sqrt(s).
-  const auto W = [&](double s) { return ancfAxialEnergy(EA, std::sqrt(s) - 1.0, to); };
+  const auto W = [&](double s) { return ancfAxialEnergy(EA, std::sqrt(s) - 1.0, tension_only); };
   const auto dW = [&](double s) {
     const double g = std::sqrt(s);
     double N, dN;
-    ancfAxialLaw(EA, g - 1.0, to, N, dN);
+    ancfAxialLaw(EA, g - 1.0, tension_only, N, dN);
     return N / (2.0 * g);
   };
   const auto ddW = [&](double s) {
     const double g = std::sqrt(s);
     double N, dN;
-    ancfAxialLaw(EA, g - 1.0, to, N, dN);
+    ancfAxialLaw(EA, g - 1.0, tension_only, N, dN);
     return (dN * g - N) / (4.0 * g * g * g);
   };
+  const Eigen::Vector3d am = 0.5 * (a0 + a1), bm = 0.5 * (b0 + b1);
+  // Bending: Gonzalez's midpoint gradient with its correction along dy = (da, l db).
+  d = CablePointDerivatives();
+  if (EI != 0.0) {
+    ancfCablePoint(0.0, EI, am, bm, hessian, d, false);
+    const Eigen::Vector3d da = a1 - a0, db = b1 - b0;
+    const double dy2 = da.squaredNorm() + l * l * db.squaredNorm();
+    if (dy2 > 1e-16) {
+      const double c = (ancfCableEnergyDensity(0.0, EI, a1, b1) -
+                        ancfCableEnergyDensity(0.0, EI, a0, b0) - d.fa.dot(da) - d.fb.dot(db)) /
+                       dy2;
+      d.fa += c * da;
+      d.fb += (c * l * l) * db;
+    }
+  }
+  // Axial: the secant in s = |a|^2.
+  const SquaredLengthSecant sec =
+      squaredLengthSecant(a0.squaredNorm(), a1.squaredNorm(), W, dW, ddW);
+  d.fa += (2.0 * sec.slope) * am;
+  if (hessian) {
+    d.Paa += (2.0 * sec.slope) * Eigen::Matrix3d::Identity() +
+             (8.0 * sec.curvature) * am * am.transpose();
+  }
+}
+
+void ancfElasticForceDiscreteGradient(const AncfCableProperties& p, const Vector12& e0,
+                                      const Vector12& e1, Vector12& Q, Matrix12* K) {
+  const GaussRule& gr = gaussRule(p.gauss_points);
+  Q.setZero();
+  if (K) K->setZero();
+  const double l = p.length;
   CablePointDerivatives d;
   for (int q = 0; q < gr.x.size(); ++q) {
     const double w = gr.w(q) * l;
     const Eigen::Vector4d sx = ancfShapeDx(gr.x(q), l);
     const Eigen::Vector4d sxx = ancfShapeDxx(gr.x(q), l);
-    const Eigen::Vector3d a0 = combine(sx, e0), a1 = combine(sx, e1), am = 0.5 * (a0 + a1);
-    const Eigen::Vector3d b0 = combine(sxx, e0), b1 = combine(sxx, e1), bm = 0.5 * (b0 + b1);
-    // Bending: Gonzalez's midpoint gradient with its correction along dy = (da, l db).
-    d = CablePointDerivatives();
-    if (EI != 0.0) {
-      ancfCablePoint(0.0, EI, am, bm, K != nullptr, d, false);
-      const Eigen::Vector3d da = a1 - a0, db = b1 - b0;
-      const double dy2 = da.squaredNorm() + l * l * db.squaredNorm();
-      if (dy2 > 1e-16) {
-        const double c = (ancfCableEnergyDensity(0.0, EI, a1, b1) -
-                          ancfCableEnergyDensity(0.0, EI, a0, b0) - d.fa.dot(da) - d.fb.dot(db)) /
-                         dy2;
-        d.fa += c * da;
-        d.fb += (c * l * l) * db;
-      }
-    }
-    // Axial: the secant in s = |a|^2.
-    const SquaredLengthSecant sec =
-        squaredLengthSecant(a0.squaredNorm(), a1.squaredNorm(), W, dW, ddW);
-    d.fa += (2.0 * sec.slope) * am;
-    if (K) {
-      d.Paa += (2.0 * sec.slope) * Eigen::Matrix3d::Identity() +
-               (8.0 * sec.curvature) * am * am.transpose();
-    }
-    addPoint(sx, sxx, d, w, EI != 0.0, Q, K);
+    ancfCablePointDiscreteGradient(p.axial_stiffness, p.bending_stiffness, l, combine(sx, e0),
+                                   combine(sxx, e0), combine(sx, e1), combine(sxx, e1),
+                                   K != nullptr, d, p.tension_only);
+    addPoint(sx, sxx, d, w, p.bending_stiffness != 0.0, Q, K);
   }
-  if (K && EI != 0.0) mirrorUpper(*K);
+  if (K && p.bending_stiffness != 0.0) mirrorUpper(*K);
+}
+
+double ancfAxialSwitchWorkError(double EA, double eps0, double eps1) {
+  if (eps0 >= kSlackBand && eps1 >= kSlackBand) return 0.0;  // linear law: trapezoid exact
+  double N0, N1, dN;
+  ancfAxialLaw(EA, eps0, true, N0, dN);
+  ancfAxialLaw(EA, eps1, true, N1, dN);
+  const double trapezoid = 0.5 * (N0 + N1) * (eps1 - eps0);
+  const double exact = ancfAxialEnergy(EA, eps1, true) - ancfAxialEnergy(EA, eps0, true);
+  return std::abs(trapezoid - exact);
 }
 
 double ancfSlackSwitchWorkError(const AncfCableProperties& p, const Vector12& e0,
@@ -302,13 +319,7 @@ double ancfSlackSwitchWorkError(const AncfCableProperties& p, const Vector12& e0
   for (int q = 0; q < gr.x.size(); ++q) {
     const Eigen::Vector4d sx = ancfShapeDx(gr.x(q), l);
     const double eps0 = combine(sx, e0).norm() - 1.0, eps1 = combine(sx, e1).norm() - 1.0;
-    if (eps0 >= kSlackBand && eps1 >= kSlackBand) continue;  // linear law: trapezoid exact
-    double N0, N1, dN;
-    ancfAxialLaw(EA, eps0, true, N0, dN);
-    ancfAxialLaw(EA, eps1, true, N1, dN);
-    const double trapezoid = 0.5 * (N0 + N1) * (eps1 - eps0);
-    const double exact = ancfAxialEnergy(EA, eps1, true) - ancfAxialEnergy(EA, eps0, true);
-    err += gr.w(q) * l * std::abs(trapezoid - exact);
+    err += gr.w(q) * l * ancfAxialSwitchWorkError(EA, eps0, eps1);
   }
   return err;
 }

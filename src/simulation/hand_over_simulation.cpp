@@ -39,7 +39,9 @@ bool HandOverSimulation::tryHandBack() {
   const CoupledState& f = full_.state();
   if (weight_ > 0.0) {
     if (full_.solver().topTension(f) < settings_.taut_tension_fraction * weight_) return false;
-    if (AncfRope::minNodalStrain(f.q) < settings_.taut_strain_fraction * end_strain_) return false;
+    // (less the tension-only law's slack band: a stress-free rope's strain is 0 to round-off)
+    if (AncfRope::minNodalStrain(f.q) < settings_.taut_strain_fraction * end_strain_ - kSlackBand)
+      return false;
   }
   if (!tryTakeOver(f)) return false;
   full_order_ = false;
@@ -70,16 +72,17 @@ void HandOverSimulation::step() {
     ++full_order_steps_;
     return;
   }
-  const bool slack =
-      weight_ > 0.0 &&
-      (reducedTopTension() < settings_.slack_tension_fraction * weight_ ||
-       (steps_ % settings_.strain_check_steps == 0 &&
-        (reducedMinStrain() < settings_.slack_strain_fraction * end_strain_ || aboutToSlacken())));
-  if (slack) {
+  if (slackened()) {
     handOver(handOverState(), Cause::slack);
     return;
   }
   if (errorTooLarge(steps_)) handOver(handOverState(), Cause::indicator);
+}
+
+bool HandOverSimulation::slackened() const {
+  return weight_ > 0.0 && (reducedTopTension() < settings_.slack_tension_fraction * weight_ ||
+                           (steps_ % settings_.strain_check_steps == 0 &&
+                            reducedMinStrain() < settings_.slack_strain_fraction * end_strain_));
 }
 
 SeriesValues HandOverSimulation::series() const {
@@ -107,7 +110,7 @@ RunStatistics HandOverSimulation::statistics() const {
   r.subdomains = reducedSubdomains();
   r.mode_update_seconds = reducedModeUpdateSeconds();
   r.halved_steps = reducedHalvedSteps() + f.halved_steps;
-  r.energy_consistent_steps = f.energy_consistent_steps;
+  r.energy_consistent_steps = reducedEnergyConsistentSteps() + f.energy_consistent_steps;
   r.hand_overs = handOvers();
   r.full_order_steps = full_order_steps_;
   r.integrating_full_order = full_order_;

@@ -31,11 +31,8 @@ int invariantRopeCoordinates(const CraneModel& m) {
 
 HandOverSettings InvariantReducedSimulation::handOverSettingsFor() {
   HandOverSettings h;
-  h.slack_tension_fraction = kSlackTensionFraction;
-  h.taut_tension_fraction = kTautTensionFraction;
-  h.slack_strain_fraction = kSlackFraction;
-  h.taut_strain_fraction = kTautFraction;
-  h.strain_check_steps = kStrainCheckSteps;
+  h.taut_tension_fraction = 0.0;
+  h.taut_strain_fraction = 0.0;
   h.hand_back_dwell = kHandBackDwell;
   h.hand_back_steps = kHandBackSteps;
   h.max_hand_back_interval = kMaxHandBackInterval;
@@ -54,6 +51,8 @@ InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model)
 
 bool InvariantReducedSimulation::startReduced(const CoupledState&) {
   max_indicator_ = 0.0;
+  indicator_due_ = false;
+  solver_->resetSwitching();
   return tryHandBack();
 }
 
@@ -68,6 +67,7 @@ void InvariantReducedSimulation::continueFrom(const Simulation& other) {
   if (full_order_) return;
   if (o->solver_->length() != solver_->length()) solver_->setLength(o->solver_->length());
   state_ = o->state_;
+  solver_->continueSteppingOf(*o->solver_);
   if (o->full_.model().scene.time_step != full_.model().scene.time_step) {
     solver_->initializeAccelerations(state_);
   }
@@ -88,29 +88,6 @@ void InvariantReducedSimulation::setMotion(const CoupledState& m) {
   state_ = r;
 }
 
-double InvariantReducedSimulation::predictedMinimumTension(
-    double tension, const Eigen::Vector3d& top, const Eigen::Vector3d& end,
-    const Eigen::Vector3d& top_velocity, const Eigen::Vector3d& end_velocity) const {
-  // The end mass on the rope as a spring-mass pendulum (header): quasi-static tension
-  // T_qs = (m_end + mu L) g.d + m_end |v_perp|^2 / l, the axial oscillation's force amplitude
-  // sqrt((T - T_qs)^2 + k m_eff v_a^2) with k = EA / L, m_eff = m_end + mu L / 3, v_a the
-  // end's axial velocity relative to the top less the hoist speed.
-  const CraneModel& m = full_.model();
-  const Eigen::Vector3d c = end - top;
-  const double l = c.norm();
-  if (!(l > 0.0)) return -std::numeric_limits<double>::infinity();
-  const Eigen::Vector3d d = c / l, v = end_velocity - top_velocity;
-  // The winch pays rope out at L' (hoist speed): the axial oscillation is what moves beyond it.
-  const double vr = v.dot(d), vp2 = std::max(0.0, v.squaredNorm() - vr * vr);
-  const double va = vr - full_.drives().hoistSpeed();
-  const double L = ropeLength(), mu = m.rope.mass_per_length;
-  const double g_d = full_.rope().gravity().dot(d);
-  const double quasi_static = (m.end_mass + mu * L) * g_d + m.end_mass * vp2 / l;
-  const double k = m.rope.axialStiffnessAt(L) / L, m_eff = m.end_mass + mu * L / 3.0;
-  const double dT = tension - quasi_static;
-  return quasi_static - std::sqrt(dT * dT + k * m_eff * va * va);
-}
-
 double InvariantReducedSimulation::swingEnergy(const CoupledState& f) const {
   // (m_end + mu L / 2) |g| l (1 - cos theta): the end mass and half the rope lifted by the chord's
   // angle theta from the hanging direction (l the chord's length).
@@ -122,12 +99,8 @@ double InvariantReducedSimulation::swingEnergy(const CoupledState& f) const {
   return (m.end_mass + 0.5 * m.rope.mass_per_length * ropeLength()) * gn * (l - c.dot(g) / gn);
 }
 
-bool InvariantReducedSimulation::aboutToSlacken() const {
-  const int last = full_.ropeNodes() - 1;
-  const double T_min = predictedMinimumTension(
-      solver_->topTension(state_), state_.q.head<3>(), solver_->nodePosition(state_.q, last),
-      state_.v.head<3>(), solver_->nodePosition(state_.v, last));
-  return T_min < kSnatchTensionFraction * weight_;
+bool InvariantReducedSimulation::slackened() const {
+  return solver_->slackLength(state_.q) > kSlackLength;
 }
 
 double InvariantReducedSimulation::errorIndicator(const CoupledState& f) const {
@@ -154,13 +127,6 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // The full model may have hoisted since the hand-over (or a new run reset the length): the
   // solver to the rope's length first.
   solver_->refreshLength();
-  if (weight_ > 0.0) {  // the rope is taut (HandOverSimulation::tryHandBack): is it calm?
-    const double T = full_.solver().topTension(f);
-    const int last = 6 * (full_.ropeNodes() - 1);
-    const double T_min = predictedMinimumTension(T, f.q.head<3>(), f.q.segment<3>(last),
-                                                 f.v.head<3>(), f.v.segment<3>(last));
-    if (T_min < kCalmTensionFraction * weight_) return false;
-  }
   const double pe = solver_->projectionError(f.q);
   if (pe > kHandBackTolerance) return false;
   CoupledState r = solver_->project(f);
@@ -202,7 +168,14 @@ CoupledState InvariantReducedSimulation::handOverState() {
 }
 
 bool InvariantReducedSimulation::errorTooLarge(long steps) {
-  if (steps % kCheckSteps != 0) return false;
+  // Due every kCheckSteps steps; postponed while the solver runs a switching episode (its
+  // accelerations are step means, not the equations' own) and while a point of the rope is
+  // slack (header).
+  if (steps % kCheckSteps == 0) indicator_due_ = true;
+  if (!indicator_due_ || solver_->switching() || solver_->slackLength(state_.q) > 0.0) {
+    return false;
+  }
+  indicator_due_ = false;
   syncFullRope();
   const double e = errorIndicator(solver_->expand(state_));
   max_indicator_ = std::max(max_indicator_, e);

@@ -58,8 +58,8 @@ FullOrderSolver::FullOrderSolver(const AncfRope& rope, RopeSupport& support,
 }
 
 void FullOrderSolver::continueSteppingOf(const FullOrderSolver& o) {
-  switching_ = o.switching_;
-  energy_created_ = o.energy_created_;
+  switching_.switching = o.switching_.switching;
+  switching_.energy_created = o.switching_.energy_created;
   last_step_length_ = o.last_step_length_;
 }
 
@@ -265,7 +265,7 @@ void FullOrderSolver::initializeAccelerations(CoupledState& s) {
   const Eigen::VectorXd x = ldlt_.solve(rhs);
   storeConsistentAccelerations(support_, x.head(n), x.tail<3>(), Azr, s);
   last_step_length_ = rope_.length();  // a start, not a hoist
-  switching_ = false;                  // consistent accelerations: generalized-alpha's start
+  switching_.switching = false;        // consistent accelerations: generalized-alpha's start
 }
 
 // One step of size h_, halved where Newton fails (stepWithHalving).
@@ -315,39 +315,24 @@ double FullOrderSolver::ropeEnergyCreated(const CoupledState& start, const Coupl
   return created;
 }
 
-// A tension-only rope (see the header): generalized-alpha where the rope neither switches nor
-// gains energy, the energy-consistent step where it does (or where generalized-alpha's Newton
-// fails).
+// A tension-only rope (see the header): the rule of integrators/tension_only_step.hpp.
 bool FullOrderSolver::tryStep(CoupledState& s, double h, std::string& why) {
   if (!rope_.tensionOnly()) return generalizedAlphaStep(s, h, why);
-  const CoupledState start = s;
-  const double tolerance = switchTolerance();
-  if (!switching_) {
-    if (generalizedAlphaStep(s, h, why)) {
-      // A rope taut at both ends of the step (no point below the axial law's linear range: a
-      // switch error of exactly 0) is generalized-alpha's as with the symmetric law.
-      const double switch_error = rope_.slackSwitchWorkError(start.q, s.q);
-      if (switch_error == 0.0) return true;
-      // A hoisting step is judged by its energy alone: uniform rescaling has moved every strain
-      // by dL / L before it (docs/model.md "Hoisting"), which reads as a switch wherever that
-      // shift crosses the slack band, but is no switch of the dynamics within the step.
-      if (hoisting_ || switch_error <= tolerance) {
-        const double created = ropeEnergyCreated(start, s);
-        if (energy_created_ + created <= tolerance) {
-          energy_created_ += created;
-          return true;
-        }
-      }
-    }
-    s = start;
-  }
-  if (!energyConsistentStep(s, h, why)) return false;
-  energy_created_ += ropeEnergyCreated(start, s);
-  ++energy_consistent_steps_;
-  switching_ = !hoisting_ && rope_.slackSwitchWorkError(start.q, s.q) > tolerance;
-  // Leaving the episode: generalized-alpha restarts from consistent accelerations (a = q'').
-  if (!switching_) initializeAccelerations(s);
-  return true;
+  TensionOnlyRope rope;
+  rope.generalized_alpha_step = [this](CoupledState& x, double dt, std::string& w) {
+    return generalizedAlphaStep(x, dt, w);
+  };
+  rope.energy_consistent_step = [this](CoupledState& x, double dt, std::string& w) {
+    return energyConsistentStep(x, dt, w);
+  };
+  rope.switch_work_error = [this](const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) {
+    return rope_.slackSwitchWorkError(q0, q1);
+  };
+  rope.energy_created = [this](const CoupledState& a, const CoupledState& b) {
+    return ropeEnergyCreated(a, b);
+  };
+  rope.restart_accelerations = [this](CoupledState& x) { initializeAccelerations(x); };
+  return tensionOnlyStep(rope, switchTolerance(), hoisting_, switching_, s, h, why);
 }
 
 bool FullOrderSolver::generalizedAlphaStep(CoupledState& s, double h, std::string& why) {
@@ -406,18 +391,7 @@ bool FullOrderSolver::energyConsistentStep(CoupledState& s, double h, std::strin
                   support_.size() > 0 ? &r0z : nullptr)) {
     return false;
   }
-  // The state keeps the step's means: lambda_m = (lambda_0 + lambda_1) / 2 (the constraint
-  // force over the step, the reported tension), q''_m = (v1 - v0) / h and z''_m likewise (the
-  // next step's predictor). The end values would alternate from step to step where the step
-  // does not resolve the rope's axial waves; the bookkeeping above makes the next step's
-  // balance independent of which are kept.
-  s.lambda = 0.5 * (start.lambda + s.lambda);
-  s.qdd = (s.v - start.v) / h;
-  s.a = s.qdd;
-  if (support_.size() > 0) {
-    s.zdd = (s.zd - start.zd) / h;
-    s.za = s.zdd;
-  }
+  keepEnergyConsistentMeans(start, h, s);
   return true;
 }
 

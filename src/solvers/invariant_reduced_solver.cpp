@@ -8,6 +8,7 @@
 #include "crane_twin/integrators/numerical_failure.hpp"
 #include "crane_twin/integrators/step_halving.hpp"
 #include "crane_twin/rope/rope_support.hpp"
+#include "crane_twin/solvers/full_order_solver.hpp"
 
 namespace crane_twin {
 
@@ -73,7 +74,6 @@ InvariantReducedSolver::InvariantReducedSolver(const AncfRope& rope,
       }
       w_(c) = wg(g) * le;
     }
-  Ka_ = D1_ * w_.asDiagonal() * D1_.transpose();
   Kb_ = D2_ * w_.asDiagonal() * D2_.transpose();
   psi_top_ = P.row(0);
   psi_end_ = P.row(N);
@@ -176,6 +176,14 @@ double InvariantReducedSolver::minStrain(const Eigen::VectorXd& y) const {
   return Rx.colwise().norm().minCoeff() - 1.0;
 }
 
+double InvariantReducedSolver::slackLength(const Eigen::VectorXd& y) const {
+  const Eigen::Map<const Matrix3X> A(y.data(), 3, m_);
+  const Eigen::RowVectorXd g = (A * D1_ / L_).colwise().norm();
+  double slack = 0.0;
+  for (int k = 0; k < w_.size(); ++k) slack += w_(k) * L_ * std::max(0.0, 1.0 - g(k));
+  return slack;
+}
+
 Eigen::Vector3d InvariantReducedSolver::chord(const Eigen::VectorXd& y) const {
   const Eigen::Vector3d c = basis_.nodePosition(y, rope_.nodes() - 1) - y.head<3>();
   const double n = c.norm();
@@ -183,21 +191,42 @@ Eigen::Vector3d InvariantReducedSolver::chord(const Eigen::VectorXd& y) const {
 }
 
 bool InvariantReducedSolver::factorize(double a, double c, double k, const Eigen::Matrix3d& G,
-                                       const Eigen::VectorXd& y) {
+                                       const Eigen::VectorXd& y, const Eigen::VectorXd* y0) {
   const double EA = rope_.axialStiffnessAt(L_), EI = rope_.element().bending_stiffness;
   const Eigen::Vector3d d = chord(y);
   const Eigen::Matrix3d dd = d * d.transpose(), tr = Eigen::Matrix3d::Identity() - dd;
   // Tension-weighted K_g at the current state (N / |r_x| per point).
   const Eigen::Map<const Matrix3X> A(y.data(), 3, m_);
   const Matrix3X Rx = A * D1_ / L_;
-  Eigen::VectorXd wt(w_.size());
+  // and the axial law's slope N'(eps) per point (0 where a tension-only point is slack); in an
+  // energy-consistent step from y0, the slope of twice the secant force Nbar = (psi(eps) -
+  // psi(eps0)) / (eps - eps0) in eps, 2 (N(eps) - Nbar) / (eps - eps0) (N' at the midpoint where
+  // the strains are that close), which is what that step's residual changes by.
+  const bool tension_only = rope_.element().tension_only;
+  Eigen::RowVectorXd g0;
+  if (y0) g0 = (Eigen::Map<const Matrix3X>(y0->data(), 3, m_) * D1_ / L_).colwise().norm();
+  Eigen::VectorXd wt(w_.size()), wa(w_.size());
   for (int g = 0; g < w_.size(); ++g) {
-    const double gx = Rx.col(g).norm();
-    wt(g) = w_(g) * std::max(0.0, EA * (gx - 1.0) / gx);
+    const double gx = Rx.col(g).norm(), eps = gx - 1.0;
+    double N, dN;
+    ancfAxialLaw(EA, eps, tension_only, N, dN);
+    wt(g) = w_(g) * std::max(0.0, N / gx);
+    if (y0) {
+      const double eps0 = g0(g) - 1.0, de = eps - eps0;
+      if (std::abs(de) > 1e-9) {
+        const double Nbar =
+            (ancfAxialEnergy(EA, eps, tension_only) - ancfAxialEnergy(EA, eps0, tension_only)) / de;
+        dN = 2.0 * (N - Nbar) / de;
+      } else {
+        double Nm;
+        ancfAxialLaw(EA, 0.5 * (eps + eps0), tension_only, Nm, dN);
+      }
+    }
+    wa(g) = w_(g) * dN;
   }
   const Eigen::MatrixXd Kg = D1_ * wt.asDiagonal() * D1_.transpose();
-  const Eigen::MatrixXd Ktr = Kg / L_ + (EI / (L_ * L_ * L_)) * Kb_;  // on I - d d^T
-  const Eigen::MatrixXd Kax = (EA / L_) * Ka_;                        // on d d^T
+  const Eigen::MatrixXd Ktr = Kg / L_ + (EI / (L_ * L_ * L_)) * Kb_;           // on I - d d^T
+  const Eigen::MatrixXd Kax = (D1_ * wa.asDiagonal() * D1_.transpose()) / L_;  // on d d^T
   const int n = 3 * m_;
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + 3, n + 3);
   for (int i = 0; i < m_; ++i)
@@ -230,19 +259,68 @@ void InvariantReducedSolver::initializeAccelerations(CoupledState& s) {
   rhs.tail<3>() = condenseSupport(support_, Eigen::Vector3d::Zero(), rz, Azr);
   const Eigen::VectorXd x = lu_.solve(rhs);
   storeConsistentAccelerations(support_, x.head(n), x.tail<3>(), Azr, s);
+  last_step_length_ = L_;        // a start, not a hoist
+  switching_.switching = false;  // consistent accelerations: generalized-alpha's start
 }
 
 void InvariantReducedSolver::step(CoupledState& s) {
+  hoisting_ = L_ != last_step_length_;
+  last_step_length_ = L_;
   stepWithHalving(
       s, h_, kMaxHalvings,
       [this](CoupledState& x, double h, std::string& why) { return tryStep(x, h, why); },
       halved_steps_);
 }
 
+void InvariantReducedSolver::resetSwitching() {
+  switching_.switching = false;
+  switching_.energy_created = 0.0;
+  last_step_length_ = L_;
+}
+
+void InvariantReducedSolver::continueSteppingOf(const InvariantReducedSolver& o) {
+  switching_.switching = o.switching_.switching;
+  switching_.energy_created = o.switching_.energy_created;
+  last_step_length_ = o.last_step_length_;
+}
+
+double InvariantReducedSolver::switchTolerance() const {
+  // FullOrderSolver::switchTolerance: the hanging weight (standard gravity) times the length.
+  const double weight = 9.80665 * (rope_.endMass() + rope_.element().mass_per_length * L_);
+  return FullOrderSolver::kSwitchTolerance * weight * L_;
+}
+
+// A tension-only rope (header): the rule of integrators/tension_only_step.hpp.
 bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why) {
+  if (!rope_.element().tension_only) return generalizedAlphaStep(s, h, why);
+  TensionOnlyRope rope;
+  rope.generalized_alpha_step = [this](CoupledState& x, double dt, std::string& w) {
+    return generalizedAlphaStep(x, dt, w);
+  };
+  rope.energy_consistent_step = [this](CoupledState& x, double dt, std::string& w) {
+    return energyConsistentStep(x, dt, w);
+  };
+  rope.switch_work_error = [this](const Eigen::VectorXd& y0, const Eigen::VectorXd& y1) {
+    return slackSwitchWorkError(y0, y1);
+  };
+  rope.energy_created = [this](const CoupledState& a, const CoupledState& b) {
+    return ropeEnergyCreated(a, b);
+  };
+  rope.restart_accelerations = [this](CoupledState& x) {
+    const double length = last_step_length_;  // within a step: not a start
+    initializeAccelerations(x);
+    last_step_length_ = length;
+  };
+  return tensionOnlyStep(rope, switchTolerance(), hoisting_, switching_, s, h, why);
+}
+
+bool InvariantReducedSolver::newton(
+    const GeneralizedAlpha& scheme, double h,
+    const std::function<Eigen::VectorXd(const CoupledState&)>& residual, CoupledState& s,
+    std::string& why, const Eigen::VectorXd* support_start_residual,
+    const Eigen::VectorXd* secant_from) {
   const int n = 3 * m_;
   int iterations = 0;
-  const Eigen::VectorXd applied = appliedForce();  // constant over the step
   const RopeIncrement increment = [&](const CoupledState& x, const NewtonWeights& w,
                                       const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
                                       Eigen::Vector3d& dmu, std::string& reason) {
@@ -252,13 +330,13 @@ bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why
         std::abs(L_ - fact_L_) > kLengthChange * L_ || (chord(x.q) - fact_d_).norm() > kChordTurn ||
         (iterations == 0 && last_iterations_ >= kSlowIterations) ||
         (iterations > 0 && iterations % kSlowIterations == 0);
-    if (stale && !factorize(w.mass, w.damping, w.stiffness, w.G, x.q)) {
+    if (stale && !factorize(w.mass, w.damping, w.stiffness, w.G, x.q, secant_from)) {
       reason = "singular reduced iteration matrix";
       return false;
     }
     ++iterations;
     Eigen::VectorXd rhs(n + 3);
-    rhs.head(n) = -w.stiffness * (massTimes(x.qdd) + force(x.q, x.v) - applied);
+    rhs.head(n) = -w.stiffness * residual(x);
     rhs.head<3>() -= w.stiffness * x.lambda;
     rhs.tail<3>() = rc;
     const Eigen::VectorXd dx = lu_.solve(rhs);
@@ -266,11 +344,118 @@ bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why
     dmu = dx.tail<3>();
     return true;
   };
-  const bool ok = newtonStep(ga_, support_, newton_, h, increment, s, why);
+  const bool ok =
+      newtonStep(scheme, support_, newton_, h, increment, s, why, support_start_residual);
   last_iterations_ = ok ? s.newton_iterations : kSlowIterations;
   if (ok) newton_iterations_ += s.newton_iterations, ++steps_;
   if (!ok) factored_ = false;
   return ok;
+}
+
+bool InvariantReducedSolver::generalizedAlphaStep(CoupledState& s, double h, std::string& why) {
+  const Eigen::VectorXd applied = appliedForce();  // constant over the step
+  const auto residual = [&](const CoupledState& x) -> Eigen::VectorXd {
+    return massTimes(x.qdd) + force(x.q, x.v) - applied;
+  };
+  return newton(ga_, h, residual, s, why, nullptr, nullptr);
+}
+
+// The energy-consistent step (header; FullOrderSolver::energyConsistentStep at full order): the
+// trapezoidal rule with the rope's force at the step's end 2 Qbar(y0, y1) - Qt_0,
+// Qt_0 = F_r - M_r y''_0 - E^T lambda_0, so that
+//   M_r (y''_0 + y''_1) / 2 = F_r - Qbar - E^T (lambda_0 + lambda_1) / 2.
+bool InvariantReducedSolver::energyConsistentStep(CoupledState& s, double h, std::string& why) {
+  s.a = s.qdd;
+  s.za = s.zdd;
+  const CoupledState start = s;
+  const Eigen::VectorXd applied = appliedForce();
+  Eigen::VectorXd Qt0 = applied - massTimes(start.qdd);
+  Qt0.head<3>() -= start.lambda;
+  Eigen::VectorXd r0z;
+  if (support_.size() > 0) {
+    r0z = support_.internalForce(start.z, start.zd, start.zdd) -
+          support_.pointForceToCoordinates(start.lambda);
+  }
+  const auto residual = [&](const CoupledState& x) -> Eigen::VectorXd {
+    return massTimes(x.qdd) + 2.0 * discreteGradientForce(start, x.q, x.v) - Qt0 - applied;
+  };
+  if (!newton(GeneralizedAlpha::newmark(), h, residual, s, why,
+              support_.size() > 0 ? &r0z : nullptr, &start.q)) {
+    return false;
+  }
+  keepEnergyConsistentMeans(start, h, s);
+  return true;
+}
+
+Eigen::VectorXd InvariantReducedSolver::discreteGradientForce(const CoupledState& start,
+                                                              const Eigen::VectorXd& y1,
+                                                              const Eigen::VectorXd& v1) const {
+  const double EA = rope_.axialStiffnessAt(L_), EI = rope_.element().bending_stiffness;
+  const bool tension_only = rope_.element().tension_only;
+  const double le = L_ / rope_.elements();  // the element length weighs Gonzalez's correction
+  const Eigen::Map<const Matrix3X> A0(start.q.data(), 3, m_), A1(y1.data(), 3, m_);
+  const Matrix3X Rx0 = A0 * D1_ / L_, Rx1 = A1 * D1_ / L_;
+  const Matrix3X Rxx0 = A0 * D2_ / (L_ * L_), Rxx1 = A1 * D2_ / (L_ * L_);
+  Matrix3X Fa(3, w_.size()), Fb(3, w_.size());
+  CablePointDerivatives d;
+  for (int g = 0; g < w_.size(); ++g) {
+    ancfCablePointDiscreteGradient(EA, EI, le, Rx0.col(g), Rxx0.col(g), Rx1.col(g), Rxx1.col(g),
+                                   false, d, tension_only);
+    Fa.col(g) = w_(g) * d.fa;
+    Fb.col(g) = (w_(g) / L_) * d.fb;
+  }
+  const Matrix3X QA = Fa * D1_.transpose() + Fb * D2_.transpose();
+  Eigen::VectorXd Q = Eigen::Map<const Eigen::VectorXd>(QA.data(), QA.size());
+  if (damping_ > 0.0) Q += dampingForce(0.5 * (start.q + y1), 0.5 * (start.v + v1));
+  return Q;
+}
+
+Eigen::VectorXd InvariantReducedSolver::dampingForce(const Eigen::VectorXd& y,
+                                                     const Eigen::VectorXd& yd) const {
+  // c EA eps' t at the points where the rope is not slack (ancfAxialDampingForce).
+  const double cEA = damping_ * rope_.axialStiffnessAt(L_);
+  const bool tension_only = rope_.element().tension_only;
+  const Eigen::Map<const Matrix3X> A(y.data(), 3, m_), Ad(yd.data(), 3, m_);
+  const Matrix3X Rx = A * D1_ / L_, Rxd = Ad * D1_ / L_;
+  Matrix3X Fa = Matrix3X::Zero(3, w_.size());
+  for (int g = 0; g < w_.size(); ++g) {
+    const double gx = Rx.col(g).norm();
+    if (ancfAxialSlack(gx, tension_only)) continue;
+    const Eigen::Vector3d t = Rx.col(g) / gx;
+    Fa.col(g) = (w_(g) * cEA * t.dot(Rxd.col(g))) * t;
+  }
+  const Matrix3X QA = Fa * D1_.transpose();
+  return Eigen::Map<const Eigen::VectorXd>(QA.data(), QA.size());
+}
+
+double InvariantReducedSolver::slackSwitchWorkError(const Eigen::VectorXd& y0,
+                                                    const Eigen::VectorXd& y1) const {
+  const double EA = rope_.axialStiffnessAt(L_);
+  const Eigen::Map<const Matrix3X> A0(y0.data(), 3, m_), A1(y1.data(), 3, m_);
+  const Eigen::RowVectorXd g0 = (A0 * D1_ / L_).colwise().norm();
+  const Eigen::RowVectorXd g1 = (A1 * D1_ / L_).colwise().norm();
+  double err = 0.0;
+  for (int g = 0; g < w_.size(); ++g)
+    err += w_(g) * L_ * ancfAxialSwitchWorkError(EA, g0(g) - 1.0, g1(g) - 1.0);
+  return err;
+}
+
+double InvariantReducedSolver::ropeEnergyCreated(const CoupledState& start,
+                                                 const CoupledState& s) const {
+  // FullOrderSolver::ropeEnergyCreated in reduced coordinates: the rope's own energy
+  // 1/2 v^T M_r v + U(B y) - F_r^T y changes by the top force's work -lambda . dy_top (E = [I3 0
+  // ...], trapezoid in time) less the damper's dissipation at the midpoint.
+  const Eigen::VectorXd F = appliedForce();
+  const auto ropeEnergy = [&](const CoupledState& x) {
+    return 0.5 * x.v.dot(massTimes(x.v)) + elasticEnergy(x.q) - F.dot(x.q);
+  };
+  const Eigen::VectorXd dq = s.q - start.q;
+  double created =
+      ropeEnergy(s) - ropeEnergy(start) + 0.5 * (start.lambda + s.lambda).dot(dq.head<3>());
+  if (damping_ > 0.0) {
+    created += dampingForce(0.5 * (start.q + s.q), 0.5 * (start.v + s.v)).dot(dq);
+  }
+  return created;
 }
 
 const InvariantRopeBasis::Projection& InvariantReducedSolver::projection() const {

@@ -123,6 +123,25 @@ void ancfCablePoint(double EA, double EI, const Eigen::Vector3d& a, const Eigen:
 double ancfCableEnergyDensity(double EA, double EI, const Eigen::Vector3d& a,
                               const Eigen::Vector3d& b, bool tension_only = false);
 
+/// The discrete gradient of phi at one point over a step (a0, b0) -> (a1, b1) (what
+/// ancfElasticForceDiscreteGradient sums; the reduced rope's energy-consistent step uses it at
+/// its own Gauss points): (fa, fb) with
+///   fa . (a1 - a0) + fb . (b1 - b0) = phi(a1, b1) - phi(a0, b0)   to round-off,
+/// axial: the secant in s = |a|^2; bending: Gonzalez's midpoint gradient corrected along
+/// dy = (da, l db), l [m] the length that makes the two parts of dy commensurate (the element's).
+/// With hessian, Paa, Pab, Pbb a symmetric stand-in for 2 d(fa, fb)/d(a1, b1): axial
+/// 2 Sbar I + 8 kappa a_m a_m^T, bending the Hessian at the midpoint.
+void ancfCablePointDiscreteGradient(double EA, double EI, double l, const Eigen::Vector3d& a0,
+                                    const Eigen::Vector3d& b0, const Eigen::Vector3d& a1,
+                                    const Eigen::Vector3d& b1, bool hessian,
+                                    CablePointDerivatives& d, bool tension_only);
+
+/// The trapezoid's work error of the tension-only axial law at one point over eps0 -> eps1 [J/m]
+/// (ancfSlackSwitchWorkError's integrand):
+///   | (N(eps0) + N(eps1)) / 2 (eps1 - eps0) - (psi(eps1) - psi(eps0)) |,
+/// exactly 0 where both ends lie in the linear range (eps >= kSlackBand).
+double ancfAxialSwitchWorkError(double EA, double eps0, double eps1);
+
 /// Axial strain eps and curvature kappa at xi (for output and tests).
 void ancfStrainCurvature(const Vector12& e, double xi, double l, double& eps, double& kappa);
 

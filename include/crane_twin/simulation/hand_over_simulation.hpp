@@ -3,17 +3,18 @@
 // support, drives, initial state), one clock, one sampling and output path, and the switch
 // between the reduced rope and full order:
 //  - reduced, each step: the drives advance, the reduced rope steps (reducedStep); the run hands
-//    its state over to full order when that step fails or asks for it (Verdict), when the top
-//    tension falls under slack_tension_fraction of the hanging weight, when (every
-//    strain_check_steps steps) a Gauss point's or node's axial strain falls under
-//    slack_strain_fraction of the static strain under the end mass or the reduced rope predicts
-//    slack (aboutToSlacken), and when its error indicator says the basis no longer carries the
-//    state (errorTooLarge);
+//    its state over to full order when that step fails or asks for it (Verdict), when the rope
+//    is slack (slackened: by default the top tension under slack_tension_fraction of the
+//    hanging weight or, every strain_check_steps steps, a Gauss point's or node's axial strain
+//    under slack_strain_fraction of the static strain under the end mass; a reduced rope may
+//    judge slack its own way), and when its error indicator says the basis no longer carries
+//    the state (errorTooLarge);
 //  - at full order: after hand_back_dwell of simulated time and then every hand_back_steps steps
 //    (doubling after each refused trial, up to max_hand_back_interval), a hand-back trial: the
 //    rope taut (top tension above taut_tension_fraction of the weight, every node's strain above
-//    taut_strain_fraction of the end mass's static strain) and the reduced rope takes the state
-//    over (tryTakeOver: its own test that the projection loses nothing).
+//    taut_strain_fraction of the end mass's static strain less the slack band kSlackBand) and the
+//    reduced rope takes the state over (tryTakeOver: its own test that the projection loses
+//    nothing).
 // A start the reduced rope does not take over runs at full order from t = 0. The hanging weight
 // W = (m_end + mu L) g and the end mass's static strain m_end g / EA are the scene's.
 #pragma once
@@ -104,8 +105,11 @@ class HandOverSimulation : public Simulation {
   virtual double reducedTopTension() const = 0;
   virtual double reducedMinStrain() const = 0;
   virtual long reducedHalvedSteps() const { return 0; }
-  /// Checked with the strain: the reduced rope foresees slack (default: never).
-  virtual bool aboutToSlacken() const { return false; }
+  virtual long reducedEnergyConsistentSteps() const { return 0; }
+  /// Checked after every carried reduced step: the rope is slack and full order takes over.
+  /// Default: the top tension under slack_tension_fraction of W or, every strain_check_steps
+  /// steps, a point's strain under slack_strain_fraction of the end mass's static strain.
+  virtual bool slackened() const;
   /// Checked after every reduced step: the basis no longer carries the state (default: never).
   virtual bool errorTooLarge(long /*steps*/) { return false; }
   /// Subdomains of the run (the subdomain reduction's own count; default 1: one basis) and the

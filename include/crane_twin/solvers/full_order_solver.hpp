@@ -32,6 +32,7 @@
 #include "crane_twin/integrators/generalized_alpha.hpp"
 #include "crane_twin/integrators/newton_step.hpp"
 #include "crane_twin/integrators/numerical_failure.hpp"
+#include "crane_twin/integrators/tension_only_step.hpp"
 #include "crane_twin/rope/ancf_rope.hpp"
 #include "crane_twin/rope/rope_support.hpp"
 
@@ -87,7 +88,7 @@ class FullOrderSolver {
   /// Half steps taken so far in place of failed steps (0 in a smooth run).
   long halvedSteps() const { return halved_steps_; }
   /// Energy-consistent steps taken so far (slack/taut switches; 0 for a rope that stays taut).
-  long energyConsistentSteps() const { return energy_consistent_steps_; }
+  long energyConsistentSteps() const { return switching_.energy_consistent_steps; }
 
   /// Continue another solver's run of the same scene and step: the memory of its stepping (an
   /// energy-consistent episode under way, the energy balance, the rope length of its last
@@ -140,11 +141,9 @@ class FullOrderSolver {
   // energy-consistent one).
   double ropeEnergyCreated(const CoupledState& start, const CoupledState& s) const;
   long halved_steps_ = 0;
-  long energy_consistent_steps_ = 0;
-  bool switching_ = false;          ///< the last step was energy-consistent and switched
+  TensionOnlySwitching switching_;  ///< the tension-only rule's memory (episode, created energy)
   double last_step_length_ = -1.0;  ///< the rope's length at the previous step() or start
   bool hoisting_ = false;           ///< the length changed since: judged by energy alone
-  double energy_created_ = 0.0;     ///< sum of ropeEnergyCreated over the steps taken [J]
   double rope_damping_ = 0.0;
   const AncfRope& rope_;
   RopeSupport& support_;

@@ -17,20 +17,33 @@
 //
 // Iteration matrix: the tangent of a straight rope along its chord d (unit vector from the top
 // to the end node), per point phi_aa = (N / |r_x|) (I - d d^T) + EA d d^T, so
-//   K_it = (1/L) [K_g (x) (I - d d^T) + EA K_a (x) d d^T] + (EI / L^3) K_b (x) (I - d d^T),
-//   K_a = sum w_g D1_g D1_g^T,  K_g = sum w_g (N_g / |r_x,g|) D1_g D1_g^T,  K_b = sum w D2 D2^T,
+//   K_it = (1/L) [K_g (x) (I - d d^T) + K_a (x) d d^T] + (EI / L^3) K_b (x) (I - d d^T),
+//   K_a = sum w_g N'(eps_g) D1_g D1_g^T,  K_g = sum w_g (N_g / |r_x,g|) D1_g D1_g^T,  K_b = sum w
+//   D2 D2^T,
 // and a M_r + gamma h C_it + beta h^2 K_it with the constraint rows, factorised (dense LU,
 // 3m + 3) when the chord has turned, the length changed, the weights changed or the last step
 // took many iterations. The residual is exact, so the converged step does not depend on this
-// approximation; only the iteration count does.
+// approximation; only the iteration count does. K_a weighs each point by the slope of its axial
+// law (N'(eps) / EA: 0 where a tension-only point is slack).
+//
+// A tension-only rope (docs/model.md "Energy-consistent step"): full order's rule
+// (integrators/tension_only_step.hpp). A step in which a Gauss point of the reduced rule crosses
+// the slack edge with a work error above the switch tolerance, or that would create energy, is
+// taken by the energy-consistent step: the trapezoidal rule with the rope's force at the step's
+// end replaced by 2 Qbar(y0, y1) - Qt_0, Qbar the discrete gradient of U(B y) at the reduced
+// Gauss points (ancfCablePointDiscreteGradient) plus the damper at the midpoint, so the elastic
+// forces' work equals U(B y1) - U(B y0) and a slack/taut switch creates no energy.
+// Generalized-alpha resumes once a step no longer switches.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 
 #include "crane_twin/integrators/coupled_state.hpp"
 #include "crane_twin/integrators/generalized_alpha.hpp"
 #include "crane_twin/integrators/newton_step.hpp"
+#include "crane_twin/integrators/tension_only_step.hpp"
 #include "crane_twin/rope/ancf_rope.hpp"
 #include "crane_twin/rope/invariant_rope_basis.hpp"
 #include "crane_twin/rope/rope_support.hpp"
@@ -71,6 +84,17 @@ class InvariantReducedSolver {
   /// NumericalFailure; s is then at the step's start.
   void step(CoupledState& s);
   long halvedSteps() const { return halved_steps_; }
+  /// Steps taken by the energy-consistent step, and the energy the accepted generalized-alpha
+  /// steps created at slack/taut switches (each under the switch tolerance) [J].
+  long energyConsistentSteps() const { return switching_.energy_consistent_steps; }
+  double energyCreated() const { return switching_.energy_created; }
+  /// A switching episode runs: the next step is energy-consistent too, and the state's
+  /// accelerations are the last step's means.
+  bool switching() const { return switching_.switching; }
+  /// Carry the switching episode and the energy budget on from another solver's run.
+  void continueSteppingOf(const InvariantReducedSolver& other);
+  /// Restart the switching bookkeeping (a new run, or a take-over from full order).
+  void resetSwitching();
 
   /// The reduced state of a full-coordinate state (M-orthogonal projection of q, v, q'', a; the
   /// top position made exact); and the full-coordinate state of a reduced one.
@@ -82,8 +106,18 @@ class InvariantReducedSolver {
   /// Reduced elastic (and damping) force Q_r(y, y') and the elastic energy U(B y) [J].
   Eigen::VectorXd force(const Eigen::VectorXd& y, const Eigen::VectorXd& yd) const;
   double elasticEnergy(const Eigen::VectorXd& y) const;
+  /// Discrete gradient of U(B y) over y0 -> y1 plus the damper at the midpoint (v0, v1 the
+  /// velocities): Qbar . (y1 - y0) = U(B y1) - U(B y0) + the damper's work.
+  Eigen::VectorXd discreteGradientForce(const CoupledState& start, const Eigen::VectorXd& y1,
+                                        const Eigen::VectorXd& v1) const;
+  /// Trapezoid work error of the tension-only axial law over y0 -> y1, summed over the reduced
+  /// Gauss points (ancfAxialSwitchWorkError) [J]; 0 for a rope taut at both ends of the step.
+  double slackSwitchWorkError(const Eigen::VectorXd& y0, const Eigen::VectorXd& y1) const;
   /// Smallest axial strain |r_x| - 1 over the Gauss points (a slack check).
   double minStrain(const Eigen::VectorXd& y) const;
+  /// The rope's slack length [m]: int max(0, -eps) dx over the Gauss points, the unstretched
+  /// length by which the slack parts exceed their stretched length.
+  double slackLength(const Eigen::VectorXd& y) const;
   /// Total mechanical energy (FullOrderSolver::energy) and the top tension [N].
   double energy(const CoupledState& s) const;
   double topTension(const CoupledState& s) const;
@@ -101,8 +135,22 @@ class InvariantReducedSolver {
 
  private:
   bool tryStep(CoupledState& s, double h, std::string& why);
+  bool generalizedAlphaStep(CoupledState& s, double h, std::string& why);
+  bool energyConsistentStep(CoupledState& s, double h, std::string& why);
+  // Newton through the reduced iteration matrix; residual(x) the rope rows' force balance;
+  // secant_from the step's start for an energy-consistent step's matrix.
+  bool newton(const GeneralizedAlpha& scheme, double h,
+              const std::function<Eigen::VectorXd(const CoupledState&)>& residual, CoupledState& s,
+              std::string& why, const Eigen::VectorXd* support_start_residual,
+              const Eigen::VectorXd* secant_from);
+  // The work the rope gains over a step beyond the top force's and the damper's [J].
+  double ropeEnergyCreated(const CoupledState& start, const CoupledState& s) const;
+  double switchTolerance() const;
+  Eigen::VectorXd dampingForce(const Eigen::VectorXd& y, const Eigen::VectorXd& yd) const;
   // Fill and factorise the iteration matrix for weights (a, c, k) and chord direction d.
-  bool factorize(double a, double c, double k, const Eigen::Matrix3d& G, const Eigen::VectorXd& y);
+  // With y0, the axial weights of an energy-consistent step from y0 (the secant's slope).
+  bool factorize(double a, double c, double k, const Eigen::Matrix3d& G, const Eigen::VectorXd& y,
+                 const Eigen::VectorXd* y0 = nullptr);
   Eigen::Vector3d chord(const Eigen::VectorXd& y) const;
   // The projection at the current length, set up on first use after a length change.
   const InvariantRopeBasis::Projection& projection() const;
@@ -118,7 +166,7 @@ class InvariantReducedSolver {
   int m_ = 0;                 ///< shapes
   Eigen::MatrixXd D1_, D2_;   ///< m x n_g shape xi-derivatives at the Gauss points
   Eigen::VectorXd w_;         ///< n_g weights in xi
-  Eigen::MatrixXd Ka_, Kb_;   ///< sum w D1 D1^T, sum w D2 D2^T (m x m)
+  Eigen::MatrixXd Kb_;        ///< sum w D2 D2^T (m x m)
   Eigen::MatrixXd mass_hat_;  ///< Psi^T M_hat Psi of the rope alone per unit mu L
   Eigen::RowVectorXd psi_top_, psi_end_;
   // Length-dependent.
@@ -134,6 +182,10 @@ class InvariantReducedSolver {
   int last_iterations_ = 0;
   int factorizations_ = 0;
   long newton_iterations_ = 0, steps_ = 0;
+  // Tension-only stepping (as FullOrderSolver's).
+  TensionOnlySwitching switching_;
+  double last_step_length_ = 0.0;
+  bool hoisting_ = false;  ///< the length changed since the last step: judged by energy alone
   mutable std::optional<InvariantRopeBasis::Projection> projection_;
   mutable double projection_length_ = -1.0;
 };

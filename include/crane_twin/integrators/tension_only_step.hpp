@@ -1,0 +1,53 @@
+// The step of a tension-only rope (docs/model.md "Energy-consistent step"), one rule for the
+// full-order and the reduced rope (FullOrderSolver, InvariantReducedSolver):
+//  - outside a switching episode, a generalized-alpha step stands where the rope is taut at both
+//    of its ends (the trapezoid work error of the axial law at the switching points is exactly
+//    0), or where that error is within `tolerance` (not asked of a hoisting step, whose uniform
+//    rescaling shifts every strain before it) and the run's created energy stays within it;
+//  - any other step is taken energy-consistently (the trapezoidal rule with the discrete
+//    gradient); the episode goes on while such a step still switches, and generalized-alpha
+//    resumes from consistent accelerations once it does not.
+#pragma once
+
+#include <Eigen/Dense>
+#include <functional>
+#include <string>
+
+#include "crane_twin/integrators/coupled_state.hpp"
+
+namespace crane_twin {
+
+/// What a rope's solver provides to the rule (states in its own coordinates).
+struct TensionOnlyRope {
+  /// One step of size h; false (s at the step's start, the reason in why) where Newton fails.
+  std::function<bool(CoupledState& s, double h, std::string& why)> generalized_alpha_step;
+  std::function<bool(CoupledState& s, double h, std::string& why)> energy_consistent_step;
+  /// Trapezoid work error of the axial law over q0 -> q1 [J] (0 for a rope taut at both ends).
+  std::function<double(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1)> switch_work_error;
+  /// Energy a step start -> end adds to the rope beyond the top force's and the damper's [J].
+  std::function<double(const CoupledState& start, const CoupledState& end)> energy_created;
+  /// Consistent accelerations of a state (generalized-alpha's restart).
+  std::function<void(CoupledState& s)> restart_accelerations;
+};
+
+/// The rule's memory over a run.
+struct TensionOnlySwitching {
+  bool switching = false;       ///< the last step was energy-consistent and switched
+  double energy_created = 0.0;  ///< created by the accepted generalized-alpha steps [J]
+  long energy_consistent_steps = 0;
+};
+
+/// One step of size h by the rule above. `tolerance` [J]: the switch error and created energy
+/// a generalized-alpha step may carry. False, s at the step's start, where the step fails.
+bool tensionOnlyStep(const TensionOnlyRope& rope, double tolerance, bool hoisting,
+                     TensionOnlySwitching& memory, CoupledState& s, double h, std::string& why);
+
+/// Close an energy-consistent step from `start` of size h: the state keeps the step's means,
+/// lambda_m = (lambda_0 + lambda_1) / 2 (the constraint force over the step, the reported
+/// tension), q''_m = (v1 - v0) / h and z''_m likewise (the next step's predictor; a = q''). The
+/// end values would alternate from step to step where the step does not resolve the rope's
+/// axial waves; the step's bookkeeping makes the next step's balance independent of which are
+/// kept.
+void keepEnergyConsistentMeans(const CoupledState& start, double h, CoupledState& s);
+
+}  // namespace crane_twin
