@@ -170,15 +170,25 @@ double InvariantReducedSolver::elasticEnergy(const Eigen::VectorXd& y) const {
   return U;
 }
 
+const Eigen::RowVectorXd& InvariantReducedSolver::stretches(const Eigen::VectorXd& y) const {
+  // The slack checks of a step ask for the stretches of its start (the previous step's end) and
+  // of its end, then the run's slack test for the end again: two entries serve them all.
+  for (StretchCache& c : stretch_cache_)
+    if (c.length == L_ && c.y.size() == y.size() && c.y == y) return c.g;
+  StretchCache& c = stretch_cache_[next_stretch_cache_];
+  next_stretch_cache_ = 1 - next_stretch_cache_;
+  c.y = y;
+  c.length = L_;
+  c.g = (Eigen::Map<const Matrix3X>(y.data(), 3, m_) * D1_ / L_).colwise().norm();
+  return c.g;
+}
+
 double InvariantReducedSolver::minStrain(const Eigen::VectorXd& y) const {
-  const Eigen::Map<const Matrix3X> A(y.data(), 3, m_);
-  const Matrix3X Rx = A * D1_ / L_;
-  return Rx.colwise().norm().minCoeff() - 1.0;
+  return stretches(y).minCoeff() - 1.0;
 }
 
 double InvariantReducedSolver::slackLength(const Eigen::VectorXd& y) const {
-  const Eigen::Map<const Matrix3X> A(y.data(), 3, m_);
-  const Eigen::RowVectorXd g = (A * D1_ / L_).colwise().norm();
+  const Eigen::RowVectorXd& g = stretches(y);
   double slack = 0.0;
   for (int k = 0; k < w_.size(); ++k) slack += w_(k) * L_ * std::max(0.0, 1.0 - g(k));
   return slack;
@@ -431,9 +441,8 @@ Eigen::VectorXd InvariantReducedSolver::dampingForce(const Eigen::VectorXd& y,
 double InvariantReducedSolver::slackSwitchWorkError(const Eigen::VectorXd& y0,
                                                     const Eigen::VectorXd& y1) const {
   const double EA = rope_.axialStiffnessAt(L_);
-  const Eigen::Map<const Matrix3X> A0(y0.data(), 3, m_), A1(y1.data(), 3, m_);
-  const Eigen::RowVectorXd g0 = (A0 * D1_ / L_).colwise().norm();
-  const Eigen::RowVectorXd g1 = (A1 * D1_ / L_).colwise().norm();
+  const Eigen::RowVectorXd g0 = stretches(y0);
+  const Eigen::RowVectorXd& g1 = stretches(y1);
   double err = 0.0;
   for (int g = 0; g < w_.size(); ++g)
     err += w_(g) * L_ * ancfAxialSwitchWorkError(EA, g0(g) - 1.0, g1(g) - 1.0);

@@ -36,6 +36,7 @@
 // Generalized-alpha resumes once a step no longer switches.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -186,6 +187,15 @@ class InvariantReducedSolver {
   TensionOnlySwitching switching_;
   double last_step_length_ = 0.0;
   bool hoisting_ = false;  ///< the length changed since the last step: judged by energy alone
+  // |r_x| at the Gauss points of the last two states asked for (stretches()).
+  const Eigen::RowVectorXd& stretches(const Eigen::VectorXd& y) const;
+  struct StretchCache {
+    Eigen::VectorXd y;
+    double length = 0.0;
+    Eigen::RowVectorXd g;
+  };
+  mutable std::array<StretchCache, 2> stretch_cache_;
+  mutable int next_stretch_cache_ = 0;
   mutable std::optional<InvariantRopeBasis::Projection> projection_;
   mutable double projection_length_ = -1.0;
 };
