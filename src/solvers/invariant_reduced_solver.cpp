@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "crane_twin/elements/gauss_legendre.hpp"
@@ -75,6 +76,7 @@ InvariantReducedSolver::InvariantReducedSolver(const AncfRope& rope,
       w_(c) = wg(g) * le;
     }
   Kb_ = D2_ * w_.asDiagonal() * D2_.transpose();
+  slope_sum_ = D1_.cwiseAbs().colwise().sum().maxCoeff();
   psi_top_ = P.row(0);
   psi_end_ = P.row(N);
   // The rope's own mass in xi-units is mu L times a constant matrix (docs/model.md).
@@ -131,6 +133,7 @@ Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
   const double* A = y.data();
   const double* Ad = yd.data();
   CablePointDerivatives d;
+  double min_stretch2 = std::numeric_limits<double>::infinity();
   for (int g = 0; g < w_.size(); ++g) {
     const double* d1 = D1_.col(g).data();
     const double* d2 = D2_.col(g).data();
@@ -142,6 +145,7 @@ Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
     }
     a *= c1;
     b *= c2;
+    min_stretch2 = std::min(min_stretch2, a.squaredNorm());
     ancfCablePoint(EA, EI, a, b, false, d, tension_only);
     if (damped && !ancfAxialSlack(a.norm(), tension_only)) {
       Eigen::Vector3d ad = Eigen::Vector3d::Zero();
@@ -155,6 +159,7 @@ Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
       qk += d1[k] * fa + d2[k] * fb;
     }
   }
+  last_force_min_stretch_ = std::sqrt(min_stretch2);
   return out;
 }
 
@@ -179,8 +184,26 @@ const Eigen::RowVectorXd& InvariantReducedSolver::stretches(const Eigen::VectorX
   next_stretch_cache_ = 1 - next_stretch_cache_;
   c.y = y;
   c.length = L_;
-  c.g = (Eigen::Map<const Matrix3X>(y.data(), 3, m_) * D1_ / L_).colwise().norm();
+  // |A D1_g| / L per point as in force(): fixed 3-vectors summed over the m shapes.
+  c.g.resize(w_.size());
+  const double* A = y.data();
+  for (int g = 0; g < w_.size(); ++g) {
+    const double* d1 = D1_.col(g).data();
+    double x = 0.0, yy = 0.0, z = 0.0;
+    for (int k = 0; k < m_; ++k) {
+      x += d1[k] * A[3 * k];
+      yy += d1[k] * A[3 * k + 1];
+      z += d1[k] * A[3 * k + 2];
+    }
+    c.g(g) = std::sqrt(x * x + yy * yy + z * z) / L_;
+  }
   return c.g;
+}
+
+double InvariantReducedSolver::minStretchLowerBound(const Eigen::VectorXd& y) const {
+  for (const StretchBound& b : stretch_bounds_)
+    if (b.length == L_ && b.y.size() == y.size() && b.y == y) return b.bound;
+  return stretches(y).minCoeff();
 }
 
 double InvariantReducedSolver::minStrain(const Eigen::VectorXd& y) const {
@@ -188,6 +211,7 @@ double InvariantReducedSolver::minStrain(const Eigen::VectorXd& y) const {
 }
 
 double InvariantReducedSolver::slackLength(const Eigen::VectorXd& y) const {
+  if (minStretchLowerBound(y) >= 1.0) return 0.0;
   const Eigen::RowVectorXd& g = stretches(y);
   double slack = 0.0;
   for (int k = 0; k < w_.size(); ++k) slack += w_(k) * L_ * std::max(0.0, 1.0 - g(k));
@@ -331,6 +355,7 @@ bool InvariantReducedSolver::newton(
     const Eigen::VectorXd* secant_from) {
   const int n = 3 * m_;
   int iterations = 0;
+  double residual_min_stretch = -1.0, last_correction = 0.0;
   const RopeIncrement increment = [&](const CoupledState& x, const NewtonWeights& w,
                                       const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
                                       Eigen::Vector3d& dmu, std::string& reason) {
@@ -352,10 +377,22 @@ bool InvariantReducedSolver::newton(
     const Eigen::VectorXd dx = lu_.solve(rhs);
     dq = dx.head(n);
     dmu = dx.tail<3>();
+    residual_min_stretch = last_force_min_stretch_;
+    last_correction = dq.cwiseAbs().maxCoeff();
     return true;
   };
+  last_force_min_stretch_ = -1.0;  // set by force(): a residual without it records no bound
   const bool ok =
       newtonStep(scheme, support_, newton_, h, increment, s, why, support_start_residual);
+  // A lower bound of the end state's smallest stretch: the last residual's, less what the last
+  // correction can change it by (|dr_x| <= sum_k |psi_k'| |da_k| / L <= sqrt(3) S |dq|_inf / L).
+  if (ok && residual_min_stretch > 0.0) {
+    StretchBound& b = stretch_bounds_[next_stretch_bound_];
+    next_stretch_bound_ = 1 - next_stretch_bound_;
+    b.y = s.q;
+    b.length = L_;
+    b.bound = residual_min_stretch - std::sqrt(3.0) * slope_sum_ * last_correction / L_;
+  }
   last_iterations_ = ok ? s.newton_iterations : kSlowIterations;
   if (ok) newton_iterations_ += s.newton_iterations, ++steps_;
   if (!ok) factored_ = false;
@@ -440,6 +477,9 @@ Eigen::VectorXd InvariantReducedSolver::dampingForce(const Eigen::VectorXd& y,
 
 double InvariantReducedSolver::slackSwitchWorkError(const Eigen::VectorXd& y0,
                                                     const Eigen::VectorXd& y1) const {
+  // Both ends in the linear range: the trapezoid is exact (ancfAxialSwitchWorkError).
+  if (minStretchLowerBound(y0) - 1.0 >= kSlackBand && minStretchLowerBound(y1) - 1.0 >= kSlackBand)
+    return 0.0;
   const double EA = rope_.axialStiffnessAt(L_);
   const Eigen::RowVectorXd g0 = stretches(y0);
   const Eigen::RowVectorXd& g1 = stretches(y1);

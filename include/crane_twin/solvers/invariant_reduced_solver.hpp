@@ -189,6 +189,19 @@ class InvariantReducedSolver {
   bool hoisting_ = false;  ///< the length changed since the last step: judged by energy alone
   // |r_x| at the Gauss points of the last two states asked for (stretches()).
   const Eigen::RowVectorXd& stretches(const Eigen::VectorXd& y) const;
+  // A lower bound of min |r_x| over the points: for the end states of the last two converged
+  // generalized-alpha steps, their Newton's last residual's less what the last correction can
+  // change it by; else the exact one. A taut step's slack checks then cost O(m), not a pass
+  // over the points.
+  double minStretchLowerBound(const Eigen::VectorXd& y) const;
+  double slope_sum_ = 0.0;                        ///< max over the points of sum_k |psi_k'(xi_g)|
+  mutable double last_force_min_stretch_ = -1.0;  ///< min |r_x| of the last force() call
+  struct StretchBound {
+    Eigen::VectorXd y;
+    double length = 0.0, bound = 0.0;
+  };
+  std::array<StretchBound, 2> stretch_bounds_;
+  int next_stretch_bound_ = 0;
   struct StretchCache {
     Eigen::VectorXd y;
     double length = 0.0;
