@@ -64,6 +64,7 @@ void InvariantReducedSimulation::continueFrom(const Simulation& other) {
   }
   full_.continueFrom(o->full_);
   continueHandOverFrom(*o);
+  indicator_due_ = o->indicator_due_;
   if (full_order_) return;
   if (o->solver_->length() != solver_->length()) solver_->setLength(o->solver_->length());
   state_ = o->state_;
