@@ -278,13 +278,6 @@ void FullOrderSolver::step(CoupledState& s) {
       halved_steps_);
 }
 
-double FullOrderSolver::switchTolerance() const {
-  // The scale: the hanging weight (standard gravity, so that g = 0 has one too) times the length.
-  const double weight =
-      9.80665 * (rope_.endMass() + rope_.element().mass_per_length * rope_.length());
-  return kSwitchTolerance * weight * rope_.length();
-}
-
 double FullOrderSolver::ropeEnergyCreated(const CoupledState& start, const CoupledState& s) const {
   // The rope's own energy E_r = 1/2 v^T M v + U(q) - F^T q changes by the work of the top force,
   // -lambda . dr_0 (trapezoid in time), less the damper's dissipation (at the midpoint).
@@ -332,7 +325,9 @@ bool FullOrderSolver::tryStep(CoupledState& s, double h, std::string& why) {
     return ropeEnergyCreated(a, b);
   };
   rope.restart_accelerations = [this](CoupledState& x) { initializeAccelerations(x); };
-  return tensionOnlyStep(rope, switchTolerance(), hoisting_, switching_, s, h, why);
+  const double tolerance = tensionOnlySwitchTolerance(
+      rope_.endMass() + rope_.element().mass_per_length * rope_.length(), rope_.length());
+  return tensionOnlyStep(rope, tolerance, hoisting_, switching_, s, h, why);
 }
 
 bool FullOrderSolver::generalizedAlphaStep(CoupledState& s, double h, std::string& why) {

@@ -9,7 +9,6 @@
 #include "crane_twin/integrators/numerical_failure.hpp"
 #include "crane_twin/integrators/step_halving.hpp"
 #include "crane_twin/rope/rope_support.hpp"
-#include "crane_twin/solvers/full_order_solver.hpp"
 
 namespace crane_twin {
 
@@ -318,12 +317,6 @@ void InvariantReducedSolver::continueSteppingOf(const InvariantReducedSolver& o)
   last_step_length_ = o.last_step_length_;
 }
 
-double InvariantReducedSolver::switchTolerance() const {
-  // FullOrderSolver::switchTolerance: the hanging weight (standard gravity) times the length.
-  const double weight = 9.80665 * (rope_.endMass() + rope_.element().mass_per_length * L_);
-  return FullOrderSolver::kSwitchTolerance * weight * L_;
-}
-
 // A tension-only rope (header): the rule of integrators/tension_only_step.hpp.
 bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why) {
   if (!rope_.element().tension_only) return generalizedAlphaStep(s, h, why);
@@ -345,7 +338,9 @@ bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why
     initializeAccelerations(x);
     last_step_length_ = length;
   };
-  return tensionOnlyStep(rope, switchTolerance(), hoisting_, switching_, s, h, why);
+  const double tolerance =
+      tensionOnlySwitchTolerance(rope_.endMass() + rope_.element().mass_per_length * L_, L_);
+  return tensionOnlyStep(rope, tolerance, hoisting_, switching_, s, h, why);
 }
 
 bool InvariantReducedSolver::newton(

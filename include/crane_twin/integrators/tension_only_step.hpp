@@ -17,6 +17,17 @@
 
 namespace crane_twin {
 
+/// The rule's tolerance [-]: the switch error and created energy a generalized-alpha step may
+/// carry, as a fraction of the hanging weight times the rope length (tensionOnlySwitchTolerance).
+constexpr double kSwitchTolerance = 1e-10;
+
+/// kSwitchTolerance times the hanging weight under standard gravity (so that g = 0 has one
+/// too), hanging_mass [kg] the end mass plus the rope's, times the rope length [m]: [J].
+inline double tensionOnlySwitchTolerance(double hanging_mass, double length) {
+  const double weight = 9.80665 * hanging_mass;
+  return kSwitchTolerance * weight * length;
+}
+
 /// What a rope's solver provides to the rule (states in its own coordinates).
 struct TensionOnlyRope {
   /// One step of size h; false (s at the step's start, the reason in why) where Newton fails.

@@ -81,7 +81,6 @@ class FullOrderSolver {
   /// accelerations and hands back to generalized-alpha.
   void step(CoupledState& s);
   static constexpr int kMaxHalvings = 10;
-  static constexpr double kSwitchTolerance = 1e-10;
   /// Axial strain-rate damping of the rope, c [s] (ancfAxialDampingForce; 0: none). Throws
   /// std::invalid_argument for a negative or non-finite c.
   void setRopeDamping(double c);
@@ -134,8 +133,6 @@ class FullOrderSolver {
   // Factorise A_ and solve it for rhs: dq and dmu; false (reason set) where A_ is singular.
   bool solveIncrement(const Eigen::VectorXd& rhs, Eigen::VectorXd& dq, Eigen::Vector3d& dmu,
                       std::string& reason);
-  // kSwitchTolerance times the hanging weight (standard gravity) times the rope length [J].
-  double switchTolerance() const;
   // The energy a step start -> s adds to the rope beyond the work of the top force and the
   // damper's dissipation [J] (<= 0 for a dissipative step; 0 to round-off for an
   // energy-consistent one).

@@ -146,7 +146,6 @@ class InvariantReducedSolver {
               const Eigen::VectorXd* secant_from);
   // The work the rope gains over a step beyond the top force's and the damper's [J].
   double ropeEnergyCreated(const CoupledState& start, const CoupledState& s) const;
-  double switchTolerance() const;
   Eigen::VectorXd dampingForce(const Eigen::VectorXd& y, const Eigen::VectorXd& yd) const;
   // Fill and factorise the iteration matrix for weights (a, c, k) and chord direction d.
   // With y0, the axial weights of an energy-consistent step from y0 (the secant's slope).
