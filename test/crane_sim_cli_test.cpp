@@ -185,8 +185,8 @@ TEST(CraneSimCli, RunWritesSpecColumnsAndSummary) {
   const auto l = lines(r.out);
   ASSERT_FALSE(l.empty());
   EXPECT_TRUE(l.back().rfind("summary: wall_s=", 0) == 0) << l.back();
-  for (const char* k :
-       {" sim_s=0.1 ", " rtf=", " steps=100 ", " subdomains=0 ", " mode_updates_s="}) {
+  for (const char* k : {" sim_s=0.1 ", " rtf=", " steps=100 ", " subdomains=0 ",
+                        " mode_updates_s=", " lift_offs=0 ", " lift_off_factor=0"}) {
     EXPECT_NE(l.back().find(k), std::string::npos) << k;
   }
   std::ifstream in(csv);
@@ -196,11 +196,12 @@ TEST(CraneSimCli, RunWritesSpecColumnsAndSummary) {
             "t,payload_x,payload_y,payload_z,payload_vx,payload_vy,payload_vz,cab_dx,cab_dy,cab_dz,"
             "jib_tip_dx,jib_tip_dy,jib_tip_dz,trolley_x,trolley_y,trolley_z,rope_top_tension,"
             "rope_length,slew_angle,trolley_radius,energy,constraint_error,subdomains,"
-            "tension_ratio,load_chart_ratio,warnings,full_order_steps");
+            "tension_ratio,load_chart_ratio,warnings,full_order_steps,payload_landed,"
+            "contact_force");
   int rows = 0;
   for (std::string row; std::getline(in, row);) {
     ++rows;
-    EXPECT_EQ(std::count(row.begin(), row.end(), ','), 26) << row;
+    EXPECT_EQ(std::count(row.begin(), row.end(), ','), 28) << row;
     EXPECT_EQ(row.find("nan"), std::string::npos) << row;
   }
   EXPECT_EQ(rows, 3);  // t = 0, 0.05, 0.1 at output_interval 0.05
@@ -459,7 +460,7 @@ TEST(CraneSimCli, SummaryCountsEnergyConsistentSteps) {
   const Result taut = run("run " + kScene +
                           " --set rope.model=full --set structure.model=rigid"
                           " --set rope.elements=10 --set duration=0.1 --quiet");
-  EXPECT_NE(taut.out.find(" energy_consistent_steps=0 halved_steps=0\n"), std::string::npos)
+  EXPECT_NE(taut.out.find(" energy_consistent_steps=0 halved_steps=0 "), std::string::npos)
       << taut.out;
   const Result slack = run("run " + std::string(CRANE_TWIN_SOURCE_DIR) +
                            "/config/scenes/hard_slack_throw.yaml --set rope.elements=20"

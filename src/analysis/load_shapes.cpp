@@ -4,13 +4,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "crane_twin/loads/load_geometry.hpp"
+
 namespace crane_twin {
 
 namespace {
-
-constexpr double kSteelDensity = 7850.0;    // kg/m^3
-constexpr double kHookBlockFill = 0.5;      // solid fraction of the hook block's box
-constexpr double kPayloadDensity = 1000.0;  // kg/m^3, mixed construction load
 
 void checkMass(double m, const char* what) {
   if (!std::isfinite(m) || m < 0.0) {
@@ -32,11 +30,10 @@ LoadShapes loadShapes(const CraneSnapshot& s, double hook_block_mass, double pay
   checkMass(hook_block_mass, "hook block");
   checkMass(payload_mass, "payload");
   LoadShapes out;
-  // m_h = 0.5 rho_steel 0.6 a^3
-  const double a = std::cbrt(hook_block_mass / (kHookBlockFill * kSteelDensity * 0.6));
+  const double a = hookBlockEdge(hook_block_mass);
   out.hook_block.size = Eigen::Vector3d(a, 0.5 * a, 1.2 * a);
   out.hook_block.pose = hangingBelow(s.hook, out.hook_block.size.z());
-  const double e = std::cbrt(payload_mass / kPayloadDensity);
+  const double e = payloadCubeEdge(payload_mass);
   out.payload.size = Eigen::Vector3d::Constant(e);
   FramePose top = s.payload;
   if ((s.payload.position - s.hook.position).norm() < 1e-9) {

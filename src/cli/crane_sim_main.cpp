@@ -18,6 +18,7 @@
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
 #include "crane_twin/simulation/invariant_reduced_simulation.hpp"
+#include "crane_twin/simulation/lift_off_monitor.hpp"
 #include "crane_twin/simulation/pendulum_crane_simulation.hpp"
 #include "crane_twin/simulation/simulation.hpp"
 #include "crane_twin/simulation/subdomain_reduced_simulation.hpp"
@@ -145,8 +146,10 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   // Physical warnings: each kind reported on stderr when first seen, with a count of
   // the output rows that carried it at the end; the CSV carries them in every row.
   std::map<int, long> warned;
+  ct::LiftOffMonitor lift_off;
   auto emit = [&]() {
     const ct::SeriesValues v = sim->series();
+    lift_off.observe(v, ct::staticTopTension(m, v.rope_length));
     if (series) ct::writeSeriesRow(series, v);
     if (nodes) sim->writeNodeRows(nodes);
     for (int bit = 1; bit <= ct::kLastWarning; bit <<= 1) {
@@ -199,10 +202,10 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   std::printf(
       "summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=%d mode_updates_s=%.3g "
       "hand_overs=%ld full_order_steps=%ld warnings_seen=%d warning_rows=%s "
-      "energy_consistent_steps=%ld halved_steps=%ld\n",
+      "energy_consistent_steps=%ld halved_steps=%ld lift_offs=%d lift_off_factor=%.4g\n",
       wall, simS, simS / wall, steps, stats.subdomains, stats.mode_update_seconds, stats.hand_overs,
       stats.full_order_steps, seen, rows_per_bit.empty() ? "none" : rows_per_bit.c_str(),
-      stats.energy_consistent_steps, stats.halved_steps);
+      stats.energy_consistent_steps, stats.halved_steps, lift_off.liftOffs(), lift_off.factor());
   return 0;
 }
 

@@ -282,6 +282,12 @@ Eigen::Vector3d ConfigNode::vec3(const std::string& key, std::optional<Eigen::Ve
   return {v[0], v[1], v[2]};
 }
 
+Eigen::Vector2d ConfigNode::vec2(const std::string& key) {
+  if (!has(key)) fail(key, "is required (a list of 2 numbers)");
+  const auto v = numberList(key, 2, Bounds::any());
+  return {v[0], v[1]};
+}
+
 void ConfigNode::finish() const {
   if (!node_.IsMap()) return;
   for (auto it = node_.begin(); it != node_.end(); ++it) {

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/loads/load_geometry.hpp"
 
 namespace crane_twin {
 
@@ -131,9 +132,14 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
                   "rope length limits");
     }
   }
+  double payload_height = -1.0;  // payload.height; negative: from the drawn boxes
   {
     ConfigNode n = root.map("payload");
     s.payload_mass = n.number("mass", 0.0, Bounds::nonNegative());
+    payload_height = n.number("height", -1.0, Bounds::any());
+    if (n.has("height") && !(payload_height >= 0.0 && payload_height <= 100.0)) {
+      n.fail("height", "must be in [0, 100] m");
+    }
     n.finish();
   }
   {
@@ -190,10 +196,27 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   }
   {
     ConfigNode n = root.map("initial");
-    s.initial_mode = n.string("mode", "equilibrium", {"equilibrium", "stress_free"});
+    s.initial_mode = n.string("mode", "equilibrium", {"equilibrium", "stress_free", "landed"});
     s.swing_deg = n.number("swing_deg", 0.0, Bounds::closed(0.0, 180.0));
     s.swing_azimuth_deg = n.number("swing_azimuth_deg", 0.0, Bounds::any());
     s.payload_velocity = n.vec3("payload_velocity", Eigen::Vector3d::Zero());
+    if (n.has("payload_offset")) {
+      if (s.initial_mode != "landed") n.fail("payload_offset", "only used with mode: landed");
+      s.payload_offset = n.vec2("payload_offset");
+    }
+    if (s.initial_mode == "landed") {
+      for (const char* k : {"swing_deg", "swing_azimuth_deg", "payload_velocity"}) {
+        if (n.has(k)) n.fail(k, "not used with mode: landed (the payload starts at rest)");
+      }
+      if (!root.has("ground")) {
+        n.fail("mode", "landed needs a ground (ground: {height, ...}) to land the payload on");
+      }
+      if (!s.rope.tension_only) {
+        n.fail("mode",
+               "landed starts with a slack rope, which needs rope.tension_only: true (the "
+               "symmetric law would push the load into the ground)");
+      }
+    }
     n.finish();
     if (s.initial_mode == "equilibrium" && s.swing_deg >= 90.0) {
       n.fail("swing_deg", "must be below 90 for an equilibrium start (use mode: stress_free)");
@@ -234,6 +257,29 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     }
     s.wind = w;
   }
+  if (root.has("ground")) {
+    ConfigNode n = root.map("ground");
+    GroundSettings g;
+    g.height = n.number("height", 0.0, Bounds::any());
+    g.stiffness = n.number("stiffness", 1e8, Bounds::positive());
+    g.damping_ratio = n.number("damping_ratio", 1.0, Bounds::closed(0.0, 10.0));
+    g.friction = n.number("friction", 0.5, Bounds::closed(0.0, 2.0));
+    n.finish();
+    if (!(s.payload_mass + s.hook_mass > 0.0)) {
+      root.fail("ground", "needs a load on the rope (payload.mass or hook.mass > 0) to land");
+    }
+    if (s.rope.model == "reduced" && s.rope.reduction == "subdomains") {
+      root.fail("ground",
+                "the subdomain reduced rope (rope.reduction: subdomains) takes no ground; "
+                "use rope.reduction: invariant, rope.model: full or pendulum");
+    }
+    s.ground = g;
+  }
+  // The payload's height: given, or the boxes' (hook block and cube, or the cube alone on a
+  // rigging: loads/load_geometry.hpp).
+  s.payload_height = payload_height >= 0.0
+                         ? payload_height
+                         : payloadUndersideDepth(s.hook_mass, s.payload_mass, s.hasRigging());
   double last_t = -1.0;
   for (ConfigNode c : root.mapList("commands")) {
     CommandEntry e;

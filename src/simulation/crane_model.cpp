@@ -50,4 +50,16 @@ GeneralizedAlpha integratorFor(const Scene& sc) {
                                     : GeneralizedAlpha::fromRhoInf(sc.rho_inf);
 }
 
+std::optional<GroundContact> groundContactOf(const CraneModel& m) {
+  if (!m.scene.ground) return std::nullopt;
+  const GroundSettings& g = *m.scene.ground;
+  GroundContactParameters p;
+  p.height = g.height;
+  p.stiffness = g.stiffness;
+  p.damping = groundDamping(g.stiffness, m.end_mass, g.damping_ratio);
+  p.friction = g.friction;
+  p.payload_height = m.scene.payload_height;
+  return GroundContact(p);
+}
+
 }  // namespace crane_twin

@@ -43,6 +43,7 @@ CraneSimulation::CraneSimulation(const CraneModel& m) : SupportedRopeSimulation(
   rope_ = std::make_unique<AncfRope>(sceneRope(model));
   solver_ = std::make_unique<FullOrderSolver>(*rope_, *support_, integratorFor(sc), sc.time_step);
   solver_->setRopeDamping(sc.rope.damping);
+  solver_->setGround(groundContactOf(model));
 }
 
 CoupledState CraneSimulation::swingEquilibrium(double swing_rad, double az_rad,
@@ -119,11 +120,46 @@ void CraneSimulation::step() {
 void CraneSimulation::stepAfterDrives() {
   applyRopeLength(state_);
   solver_->step(state_);
+  if (ground_) {
+    // The hook rests on the landed load: the payload pressed on the ground and the rope's
+    // last node slack.
+    const int last = rope_->elements();
+    setHookResting(solver_->groundForce(state_).z() > 0.0 &&
+                   state_.q.segment<3>(6 * last + 3).norm() <= 1.0);
+  }
 }
 
 Eigen::VectorXd CraneSimulation::straightRope(const Eigen::Vector3d& top,
                                               const Eigen::Vector3d& dir) const {
   return rope_->straight(top, dir);
+}
+
+// The straight rope's stretched length from its tension profile T(x) = T_hook + w (L - x):
+// S(L) = L + (T_hook L + w L^2 / 2) / EA = span, solved for L (EA follows L through the
+// reeving: three fixed-point passes, each exact for the EA it takes).
+double CraneSimulation::unloadedHangingLength(double span) {
+  const double g = model_.scene.gravity;
+  const double w = rope_->element().mass_per_length * g;
+  const double hook = rope_->hasRigging()
+                          ? (rope_->hookMass() +
+                             0.5 * rope_->rigging().massPerLength() * rope_->rigging().length()) *
+                                g
+                          : 0.0;
+  double L = span;
+  for (int pass = 0; pass < 3; ++pass) {
+    const double EA = rope_->element().axial_stiffness;
+    const double a = 0.5 * w / EA, b = 1.0 + hook / EA;
+    L = a > 0.0 ? (-b + std::sqrt(b * b + 4.0 * a * span)) / (2.0 * a) : span / b;
+    rope_->setLength(L);
+  }
+  solver_->refreshMass();
+  return L;
+}
+
+Eigen::VectorXd CraneSimulation::unloadedHangingRope(const Eigen::Vector3d& top,
+                                                     const Eigen::Vector3d& dir) const {
+  const double w = rope_->element().mass_per_length * model_.scene.gravity;
+  return rope_->stretchedStraight(top, dir, 0.0, w);
 }
 
 void CraneSimulation::initializeAccelerations(CoupledState& s) {
@@ -136,9 +172,7 @@ double CraneSimulation::topTensionOf(const CoupledState& s) const {
   return ropeTopTension(*rope_, s);
 }
 
-double CraneSimulation::energyOf(const CoupledState& s) const {
-  return mechanicalEnergy(*rope_, *support_, s);
-}
+double CraneSimulation::energyOf(const CoupledState& s) const { return solver_->energy(s); }
 
 std::vector<bool> CraneSimulation::fullStatePositionBlocks() const {
   std::vector<bool> b(rope_->dofs() / 3, false);

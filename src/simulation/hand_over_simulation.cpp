@@ -43,6 +43,9 @@ bool HandOverSimulation::tryHandBack() {
     if (AncfRope::minNodalStrain(f.q) < settings_.taut_strain_fraction * end_strain_ - kSlackBand)
       return false;
   }
+  if (full_.ground() && full_.ground()->clearance(f.q.segment<3>(full_.rope().positionIndex(
+                            full_.rope().nodes() - 1))) < 2.0 * kGroundMargin)
+    return false;
   if (!tryTakeOver(f)) return false;
   full_order_ = false;
   return true;
@@ -74,6 +77,11 @@ void HandOverSimulation::step() {
   }
   if (slackened()) {
     handOver(handOverState(), Cause::slack);
+    return;
+  }
+  if (full_.ground() &&
+      full_.ground()->clearance(reducedNode(full_.ropeNodes() - 1)) < kGroundMargin) {
+    handOver(handOverState(), Cause::ground);
     return;
   }
   if (errorTooLarge(steps_)) handOver(handOverState(), Cause::indicator);

@@ -19,6 +19,7 @@ PendulumCraneSimulation::PendulumCraneSimulation(const CraneModel& m) : Supporte
   rope_->setReevingLength(model_.rope.reeving_equivalent_length);
   solver_ = std::make_unique<PendulumSolver>(*rope_, *support_, integratorFor(sc), sc.time_step);
   solver_->setRopeDamping(sc.rope.damping);
+  solver_->setGround(groundContactOf(model_));
   if (sc.hasRigging()) {
     rigging_ = std::make_unique<PendulumRope>(sc.hook_rigging_length, sc.rope.mass_per_length,
                                               sc.rope.axial_stiffness, model_.end_mass,
@@ -40,6 +41,33 @@ Eigen::VectorXd PendulumCraneSimulation::straightRope(const Eigen::Vector3d& top
   return q;
 }
 
+// The bar's tension is uniform: with its end unloaded it is unstretched over the span (the
+// hook block on a rigging stretches it by its weight over EA / L).
+double PendulumCraneSimulation::unloadedHangingLength(double span) {
+  const double hook =
+      rigging_ ? (rope_->endMass() + 0.5 * rigging_->massPerLength() * rigging_->length() +
+                  0.5 * rope_->massPerLength() * span) *
+                     model_.scene.gravity
+               : 0.0;
+  const double L = span / (1.0 + hook / rope_->axialStiffness());
+  rope_->setLength(L);
+  return L;
+}
+
+Eigen::VectorXd PendulumCraneSimulation::unloadedHangingRope(const Eigen::Vector3d& top,
+                                                             const Eigen::Vector3d& dir) const {
+  const double hook =
+      rigging_ ? (rope_->endMass() + 0.5 * rigging_->massPerLength() * rigging_->length() +
+                  0.5 * rope_->massPerLength() * rope_->length()) *
+                     model_.scene.gravity
+               : 0.0;
+  const double l = rope_->length() * (1.0 + hook / rope_->axialStiffness());
+  if (!rigging_) return PendulumRope::straight(top, dir, l);
+  Eigen::VectorXd q(9);
+  q << top, top + l * dir, top + (l + rigging_->length()) * dir;
+  return q;
+}
+
 void PendulumCraneSimulation::initialize() {
   resetDrivesAndPose();
   rope_->setLength(model_.scene.rope.length);
@@ -48,10 +76,14 @@ void PendulumCraneSimulation::initialize() {
 
 void PendulumCraneSimulation::step() {
   if (advanceDrives(state_.t, solver_->timeStep(), state_.z) &&
-      drives_.hoistLength() != rope_->length()) {
-    rope_->setLength(drives_.hoistLength());
+      hangingLength() != rope_->length()) {
+    rope_->setLength(hangingLength());
   }
   solver_->step(state_);
+  if (ground_) {
+    setHookResting(solver_->groundForce(state_).z() > 0.0 &&
+                   rope_->tension(state_.q.head<6>()) <= 0.0);
+  }
 }
 
 void PendulumCraneSimulation::continueFrom(const Simulation& other) {

@@ -14,7 +14,7 @@ const char* const kSeriesHeader =
     "t,payload_x,payload_y,payload_z,payload_vx,payload_vy,payload_vz,cab_dx,cab_dy,cab_dz,"
     "jib_tip_dx,jib_tip_dy,jib_tip_dz,trolley_x,trolley_y,trolley_z,rope_top_tension,"
     "rope_length,slew_angle,trolley_radius,energy,constraint_error,subdomains,"
-    "tension_ratio,load_chart_ratio,warnings,full_order_steps";
+    "tension_ratio,load_chart_ratio,warnings,full_order_steps,payload_landed,contact_force";
 
 const char* warningName(int bit) {
   switch (bit) {
@@ -50,7 +50,7 @@ void writeSeriesRow(std::ostream& out, const SeriesValues& v) {
   out << ',' << v.rope_top_tension << ',' << v.rope_length << ',' << v.slew_angle << ','
       << v.trolley_radius << ',' << v.energy << ',' << v.constraint_error << ',' << v.subdomains
       << ',' << v.tension_ratio << ',' << v.load_chart_ratio << ',' << v.warnings << ','
-      << v.full_order_steps << '\n';
+      << v.full_order_steps << ',' << (v.payload_landed ? 1 : 0) << ',' << v.contact_force << '\n';
 }
 
 void Simulation::setMeasuredWind(const Eigen::Vector3d&) {

@@ -1,6 +1,9 @@
 #include "crane_twin/simulation/supported_rope_simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "crane_twin/integrators/newton_step.hpp"
 #include "crane_twin/io/input_error.hpp"
@@ -67,6 +70,7 @@ double windJibHeight(const CraneModel& m) {
 
 SupportedRopeSimulation::SupportedRopeSimulation(const CraneModel& model)
     : model_(model),
+      ground_(groundContactOf(model_)),
       drives_(model_.scene, torqueDriveInertia(model_)),
       support_(makeRopeSupport(model_)) {
   if (model_.scene.wind) wind_.emplace(*model_.scene.wind, windJibHeight(model_));
@@ -117,6 +121,8 @@ void SupportedRopeSimulation::updateWind(double t, const Eigen::VectorXd& z, boo
 void SupportedRopeSimulation::resetDrivesAndPose() {
   const Scene& sc = model_.scene;
   drives_.reset();
+  piled_ = 0.0;
+  hook_resting_ = false;
   support_->setPose(sc.slew_angle, sc.trolley_radius);
   support_->setSlewMotion(0.0, 0.0);
   // A fresh 3 s history and no measurement: the scene's wind, or none.
@@ -134,6 +140,8 @@ void SupportedRopeSimulation::resetDrivesAndPose() {
 
 void SupportedRopeSimulation::continueDrivesFrom(const SupportedRopeSimulation& o) {
   drives_.assignStateFrom(o.drives_);
+  piled_ = o.piled_;
+  hook_resting_ = o.hook_resting_;
   support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
   support_->setSlewMotion(drives_.slewRate(), drives_.slewAcceleration());
   wind_ = o.wind_;
@@ -143,7 +151,13 @@ void SupportedRopeSimulation::continueDrivesFrom(const SupportedRopeSimulation& 
 }
 
 bool SupportedRopeSimulation::advanceDrives(double t, double dt, const Eigen::VectorXd& z) {
+  const double before = drives_.hoistLength();
   const bool moved = drives_.advance(t, dt);
+  // Rope lying on the load (docs/model.md "Ground contact"): reeled in first; paid out onto it
+  // while the hook rests there.
+  const double paid = drives_.hoistLength() - before;
+  if (paid < 0.0) piled_ = std::max(0.0, piled_ + paid);
+  if (paid > 0.0 && hook_resting_) piled_ += paid;
   updateWind(t + dt, z);
   if (!moved) return false;
   support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
@@ -157,11 +171,48 @@ CoupledState SupportedRopeSimulation::staticState(Eigen::Vector3d* holding_force
                           holding_force);
 }
 
+// docs/scenes.md "initial.mode: landed": the payload at rest on the ground at its static
+// penetration, at payload_offset from under the rope's top; a rigging straight and unstretched
+// above it; the hoist rope hanging straight from the top to the hook, stretched by its own
+// weight with its end unloaded; what rope.length has beyond that lies on the load (piled_).
+CoupledState SupportedRopeSimulation::landedState() {
+  const Scene& sc = model_.scene;
+  const GroundContactParameters& g = ground_->parameters();
+  CoupledState s;
+  s.z = s.zd = Eigen::VectorXd::Zero(support_->size());
+  const Eigen::Vector3d top = support_->point(s.z);
+  const double sink = model_.end_mass * sc.gravity / g.stiffness;
+  const Eigen::Vector3d end(top.x() + sc.payload_offset.x(), top.y() + sc.payload_offset.y(),
+                            g.height + g.payload_height - sink);
+  const double rigging = sc.hasRigging() ? sc.hook_rigging_length : 0.0;
+  const Eigen::Vector3d dir = (end - top).normalized();
+  const double span = (end - top).norm() - rigging;
+  const double L = sc.rope.length;
+  const double hanging = span > 0.0 ? unloadedHangingLength(span) : 0.0;
+  if (!(span > 0.0) || L < hanging) {
+    char b[320];
+    std::snprintf(b, sizeof b,
+                  ": key 'rope.length': %.4g m does not reach from the rope's top (z = %.4g m) "
+                  "to the landed load's hook, %.4g m away (%.4g m of rope hang there; "
+                  "initial.mode: landed; ground.height, payload.height and the trolley set that "
+                  "distance)",
+                  L, top.z(), std::max(0.0, span), hanging);
+    throw InputError(sc.file + b);
+  }
+  piled_ = L - hanging;
+  hook_resting_ = true;
+  s.q = unloadedHangingRope(top, dir);
+  s.v = Eigen::VectorXd::Zero(s.q.size());
+  return s;
+}
+
 CoupledState SupportedRopeSimulation::sceneInitialState() {
   const Scene& sc = model_.scene;
   const double th = sc.swing_deg * M_PI / 180.0, az = sc.swing_azimuth_deg * M_PI / 180.0;
   CoupledState s;
-  if (sc.initial_mode == "stress_free") {
+  if (sc.initial_mode == "landed") {
+    s = landedState();
+  } else if (sc.initial_mode == "stress_free") {
     s.z = s.zd = Eigen::VectorXd::Zero(support_->size());
     s.q = straightRope(support_->point(s.z), swingDirection(th, az));
     s.v = Eigen::VectorXd::Zero(s.q.size());
@@ -205,6 +256,10 @@ SeriesValues SupportedRopeSimulation::seriesWith(const CoupledState& s,
   v.trolley_radius = drives_.trolleyRadius();
   v.energy = energy;
   v.constraint_error = constraintError(*support_, s);
+  if (ground_) {
+    v.contact_force = ground_->force(payload, payload_velocity).f.z();
+    v.payload_landed = v.contact_force > 0.0;
+  }
   setCraneWarnings(model_, drives_, v);
   if (wind_) {
     v.wind_3s = wind_3s_;

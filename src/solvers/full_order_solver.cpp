@@ -142,6 +142,21 @@ void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& 
     const Matrix6 Ab = stiffWeight * Kb + dampWeight * Cb;
     for (int e = 0; e < 36; ++e) val[rigging_index_[e]] += Ab.data()[e];
   }
+  if (ground_) {
+    // The ground on the payload point: Q -= f, and -df/dq, -df/dv in the iteration matrix (for
+    // an energy-consistent step the step's mean force, whose derivatives are those of twice it).
+    const int e = rope_.positionIndex(rope_.nodes() - 1);
+    const GroundContactForce c =
+        from ? ground_->stepMeanForce(from->q.segment<3>(e), q.segment<3>(e), from->v.segment<3>(e),
+                                      v.segment<3>(e))
+             : ground_->force(q.segment<3>(e), v.segment<3>(e));
+    Q.segment<3>(e) -= c.f;
+    if (c.df_dr.any() || c.df_dv.any()) {
+      const Eigen::Matrix3d Ac = -stiffWeight * c.df_dr - dampWeight * c.df_dv;
+      for (int j = 0; j < 3; ++j)
+        for (int i = 0; i < 3; ++i) A_.coeffRef(e + i, e + j) += Ac(i, j);
+    }
+  }
   for (int d = 0; d < 3; ++d) {
     A_.coeffRef(n + d, d) = 1.0;
     A_.coeffRef(d, n + d) = 1.0;
@@ -283,12 +298,20 @@ double FullOrderSolver::ropeEnergyCreated(const CoupledState& start, const Coupl
   // -lambda . dr_0 (trapezoid in time), less the damper's dissipation (at the midpoint).
   const SparseMatrix& M = rope_.massMatrix();
   const Eigen::VectorXd& F = rope_.gravityForce();
+  const int e = rope_.positionIndex(rope_.nodes() - 1);
   const auto ropeEnergy = [&](const CoupledState& x) {
-    return 0.5 * x.v.dot(M * x.v) + rope_.elasticEnergy(x.q) - F.dot(x.q);
+    const double ground = ground_ ? ground_->energy(x.q.segment<3>(e)) : 0.0;
+    return 0.5 * x.v.dot(M * x.v) + rope_.elasticEnergy(x.q) - F.dot(x.q) + ground;
   };
   const Eigen::VectorXd dq = s.q - start.q;
   double created =
       ropeEnergy(s) - ropeEnergy(start) + 0.5 * (start.lambda + s.lambda).dot(dq.head<3>());
+  if (ground_) {
+    // Less the work of the ground's damper and friction (at the midpoint, <= 0).
+    const Eigen::Vector3d rm = 0.5 * (start.q.segment<3>(e) + s.q.segment<3>(e));
+    const Eigen::Vector3d vm = 0.5 * (start.v.segment<3>(e) + s.v.segment<3>(e));
+    created -= ground_->dissipativeForce(rm, vm).dot(dq.segment<3>(e));
+  }
   if (rope_damping_ > 0.0) {
     const Eigen::VectorXd qm = 0.5 * (start.q + s.q), vm = 0.5 * (start.v + s.v);
     Vector12 Qd;
@@ -310,7 +333,7 @@ double FullOrderSolver::ropeEnergyCreated(const CoupledState& start, const Coupl
 
 // A tension-only rope (see the header): the rule of integrators/tension_only_step.hpp.
 bool FullOrderSolver::tryStep(CoupledState& s, double h, std::string& why) {
-  if (!rope_.tensionOnly()) return generalizedAlphaStep(s, h, why);
+  if (!rope_.tensionOnly() && !ground_) return generalizedAlphaStep(s, h, why);
   TensionOnlyRope rope;
   rope.generalized_alpha_step = [this](CoupledState& x, double dt, std::string& w) {
     return generalizedAlphaStep(x, dt, w);
@@ -319,7 +342,9 @@ bool FullOrderSolver::tryStep(CoupledState& s, double h, std::string& why) {
     return energyConsistentStep(x, dt, w);
   };
   rope.switch_work_error = [this](const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) {
-    return rope_.slackSwitchWorkError(q0, q1);
+    const int e = rope_.positionIndex(rope_.nodes() - 1);
+    return rope_.slackSwitchWorkError(q0, q1) +
+           (ground_ ? ground_->switchWorkError(q0.segment<3>(e), q1.segment<3>(e)) : 0.0);
   };
   rope.energy_created = [this](const CoupledState& a, const CoupledState& b) {
     return ropeEnergyCreated(a, b);
@@ -413,7 +438,15 @@ double ropeTopTension(const AncfRope& rope, const CoupledState& s) {
 }
 
 double FullOrderSolver::energy(const CoupledState& s) const {
-  return mechanicalEnergy(rope_, support_, s);
+  const double ground =
+      ground_ ? ground_->energy(s.q.segment<3>(rope_.positionIndex(rope_.nodes() - 1))) : 0.0;
+  return mechanicalEnergy(rope_, support_, s) + ground;
+}
+
+Eigen::Vector3d FullOrderSolver::groundForce(const CoupledState& s) const {
+  if (!ground_) return Eigen::Vector3d::Zero();
+  const int e = rope_.positionIndex(rope_.nodes() - 1);
+  return ground_->force(s.q.segment<3>(e), s.v.segment<3>(e)).f;
 }
 
 double FullOrderSolver::topTension(const CoupledState& s) const { return ropeTopTension(rope_, s); }

@@ -46,6 +46,14 @@ void PendulumSolver::forces(const VectorN& q, const VectorN& v, VectorN& Q, Vect
   Qd.head<6>() = Qdb;
   if (K) K->topLeftCorner<6, 6>() = Kb;
   if (C) C->topLeftCorner<6, 6>() = Cb;
+  if (ground_) {
+    // The ground on the end point (the payload): with the damping forces, -df/dq and -df/dv
+    // in K and C.
+    const GroundContactForce g = ground_->force(q.tail<3>(), v.tail<3>());
+    Qd.tail<3>() -= g.f;
+    if (K) K->bottomRightCorner<3, 3>() -= g.df_dr;
+    if (C) C->bottomRightCorner<3, 3>() -= g.df_dv;
+  }
   if (!rigging_) return;
   rigging_->elasticForce(q.tail<6>(), Qb, K ? &Kb : nullptr);
   rigging_->dampingForce(damping_, q.tail<6>(), v.tail<6>(), Qdb, C ? &Cb : nullptr);
@@ -195,8 +203,14 @@ bool PendulumSolver::tryStep(CoupledState& s, double h, std::string& why) {
 double PendulumSolver::energy(const CoupledState& s) const {
   double U = rope_.elasticEnergy(s.q.head<6>());
   if (rigging_) U += rigging_->elasticEnergy(s.q.tail<6>());
+  if (ground_) U += ground_->energy(s.q.tail<3>());
   return 0.5 * s.v.dot(massMatrix() * s.v) + U - appliedForce().dot(s.q) +
          support_.energy(s.z, s.zd);
+}
+
+Eigen::Vector3d PendulumSolver::groundForce(const CoupledState& s) const {
+  if (!ground_) return Eigen::Vector3d::Zero();
+  return ground_->force(s.q.tail<3>(), s.v.tail<3>()).f;
 }
 
 double PendulumSolver::topTension(const CoupledState& s) const {

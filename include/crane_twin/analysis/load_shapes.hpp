@@ -1,13 +1,9 @@
 // Boxes that picture the hook block and the payload at the simulated frames (docs/ros.md
-// "Frames"), sized from their masses. Only a picture: the model keeps both as point masses.
-//
-//   hook block: a box a x a/2 x 1.2 a of steel (7850 kg/m^3) filled to one half (sheaves, side
-//               plates, hook), volume m_h / (0.5 * 7850) = 0.6 a^3;
-//   payload:    a cube of edge (m_p / 1000 kg/m^3)^(1/3), a mixed construction load (pallets,
-//               formwork, a concrete skip is denser: 2400 kg/m^3).
-// Each box hangs below the point the model gives its mass, along that frame's z axis (up the
-// rope): the hook block under the rope's end, the payload under the hook block when the model
-// lumps both into one point, else under its own point.
+// "Frames"), sized from their masses (loads/load_geometry.hpp). Only a picture: the model keeps
+// both as point masses (the ground meets the payload's underside at the depth the same sizes
+// give). Each box hangs below the point the model gives its mass, along that frame's z axis (up
+// the rope): the hook block under the rope's end, the payload under the hook block when the
+// model lumps both into one point, else under its own point.
 #pragma once
 
 #include "crane_twin/analysis/crane_snapshot.hpp"

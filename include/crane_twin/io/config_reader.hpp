@@ -63,6 +63,8 @@ class ConfigNode {
   std::string string(const std::string& key, std::optional<std::string> def,
                      const std::vector<std::string>& allowed = {});
   Eigen::Vector3d vec3(const std::string& key, std::optional<Eigen::Vector3d> def);
+  /// A required list of 2 finite numbers.
+  Eigen::Vector2d vec2(const std::string& key);
   std::vector<double> numberList(const std::string& key, std::size_t size, Bounds b);
   /// A list of strings; absent or null: empty.
   std::vector<std::string> stringList(const std::string& key);

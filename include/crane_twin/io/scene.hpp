@@ -54,6 +54,15 @@ struct SlewDriveSettings {
   double damping = 0.0;             ///< torque: gear damping [N m s/rad]
 };
 
+/// `ground:` (docs/scenes.md, docs/model.md "Ground contact"): a horizontal landing surface under
+/// the payload.
+struct GroundSettings {
+  double height = 0.0;         ///< world z of the surface [m]
+  double stiffness = 1e8;      ///< contact spring k [N/m]
+  double damping_ratio = 1.0;  ///< of the landing mass on k: c = 2 zeta sqrt(k m) [-]
+  double friction = 0.5;       ///< Coulomb coefficient mu [-]
+};
+
 struct Scene {
   std::string file;
   std::string crane_name = "none";
@@ -70,17 +79,25 @@ struct Scene {
   bool structure_geometric_stiffness = false;  ///< P-delta under self-weight (docs/model.md)
   RopeSettings rope;
   double payload_mass = 3600.0;
+  /// `payload.height`: from the point that carries the payload's mass down to the load's
+  /// underside [m] (default the boxes docs/ros.md draws: loads/load_geometry.hpp).
+  double payload_height = 0.0;
   double trolley_radius = 80.0;
   double slew_angle = 0.0;
   bool slew_inertial_loads = false;  ///< default: on when the structure is flexible
   SlewDriveSettings slew_drive;
-  std::string initial_mode = "equilibrium";  ///< equilibrium | stress_free
+  std::string initial_mode = "equilibrium";  ///< equilibrium | stress_free | landed
+  /// `initial.payload_offset` (landed): the payload's horizontal offset from under the rope's
+  /// top [m].
+  Eigen::Vector2d payload_offset = Eigen::Vector2d::Zero();
   double swing_deg = 2.3;
   double swing_azimuth_deg = 0.0;
   Eigen::Vector3d payload_velocity = Eigen::Vector3d::Zero();
   double gravity = 9.81;
   /// `wind:` (docs/scenes.md; empty: no wind, until a measured wind arrives at the node).
   std::optional<WindSettings> wind;
+  /// `ground:` (empty: no ground, the payload can only hang).
+  std::optional<GroundSettings> ground;
   std::vector<CommandEntry> commands;
   /// Where the crane stands on a site (docs/site.md): the mast foot [m] and the yaw about z
   /// [deg] of the crane's frame in the site frame. Places the ROS frames and the clearance

@@ -48,6 +48,8 @@ class AncfRope {
   std::array<int, 6> riggingDofs() const;
   /// The rigging bar (hook to payload; its end mass the payload's). Only with a rigging.
   const PendulumRope& rigging() const { return *rigging_; }
+  /// The hook block's mass at the hoist rope's end under a rigging [kg] (0 without).
+  double hookMass() const { return hook_mass_; }
   /// The hoist rope's unstretched (hanging) length [m], without the rigging.
   double length() const { return element_.length * elements_; }
   /// The payload on a rigging of unstretched length `length` [m] > 0 under the hook block of mass

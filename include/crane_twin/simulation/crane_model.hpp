@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "crane_twin/elements/ground_contact.hpp"
 #include "crane_twin/integrators/generalized_alpha.hpp"
 #include "crane_twin/io/scene.hpp"
 #include "crane_twin/structure/tower_crane_structure.hpp"
@@ -61,6 +62,12 @@ struct CraneModel {
 };
 
 CraneModel buildCraneModel(const Scene& scene);
+
+/// The scene's ground under the payload (docs/model.md "Ground contact"): `ground:`'s height,
+/// stiffness and friction, the payload's height (payload.height), and the damper
+/// c = 2 zeta sqrt(k m) for the mass that lands, m = end_mass (payload and hook block, or the
+/// payload alone on a rigging). Empty without `ground:`.
+std::optional<GroundContact> groundContactOf(const CraneModel& model);
 
 /// The scene's integrator (generalized_alpha with its rho_inf, or newmark; docs/scenes.md).
 GeneralizedAlpha integratorFor(const Scene& scene);

@@ -56,9 +56,10 @@ class CraneSimulation final : public SupportedRopeSimulation {
   /// The rope (and the solver's mass) to the hoist drive's length, no state touched; true where
   /// the length changed (the reduced rope keeps its own coordinates through a length change).
   bool followHoistLength();
-  /// The rope length the hoist asks for [m] (the scene's rope when there is no crane).
+  /// The rope length the hoist asks for [m]: its length less the rope lying on a landed load
+  /// (the scene's rope when there is no crane).
   double hoistTargetLength() const {
-    return model_.scene.crane ? drives_.hoistLength() : rope_->length();
+    return model_.scene.crane ? hangingLength() : rope_->length();
   }
 
   /// Continue from a full-coordinate state (the reduced model hands a slack rope over here).
@@ -83,6 +84,9 @@ class CraneSimulation final : public SupportedRopeSimulation {
                                 Eigen::Vector3d* holding_force) override;
   Eigen::VectorXd straightRope(const Eigen::Vector3d& top,
                                const Eigen::Vector3d& dir) const override;
+  double unloadedHangingLength(double span) override;
+  Eigen::VectorXd unloadedHangingRope(const Eigen::Vector3d& top,
+                                      const Eigen::Vector3d& dir) const override;
   void initializeAccelerations(CoupledState& s) override;
   int endPointIndex() const override;
   double topTensionOf(const CoupledState& s) const override;

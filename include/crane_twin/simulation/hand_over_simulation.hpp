@@ -9,12 +9,14 @@
 //    under slack_strain_fraction of the static strain under the end mass; a reduced rope may
 //    judge slack its own way), and when its error indicator says the basis no longer carries
 //    the state (errorTooLarge);
+//    and when the payload's underside comes within kGroundMargin of the ground (the reduced
+//    ropes carry no contact: docs/model.md "Ground contact");
 //  - at full order: after hand_back_dwell of simulated time and then every hand_back_steps steps
 //    (doubling after each refused trial, up to max_hand_back_interval), a hand-back trial: the
 //    rope taut (top tension above taut_tension_fraction of the weight, every node's strain above
-//    taut_strain_fraction of the end mass's static strain less the slack band kSlackBand) and the
-//    reduced rope takes the state over (tryTakeOver: its own test that the projection loses
-//    nothing).
+//    taut_strain_fraction of the end mass's static strain less the slack band kSlackBand, the
+//    payload at least 2 kGroundMargin above the ground) and the reduced rope takes the state over
+//    (tryTakeOver: its own test that the projection loses nothing).
 // A start the reduced rope does not take over runs at full order from t = 0. The hanging weight
 // W = (m_end + mu L) g and the end mass's static strain m_end g / EA are the scene's.
 #pragma once
@@ -29,6 +31,10 @@ namespace crane_twin {
 
 /// The thresholds and schedule of the hand-over (fractions of the hanging weight W and of the
 /// end mass's static strain; see each reduced rope's values and why).
+/// The payload's clearance above the ground under which a reduced run hands over to full order
+/// [m] (twice that for a hand-back): a load moves far less in one step (1 cm at 10 m/s and 1 ms).
+constexpr double kGroundMargin = 0.05;
+
 struct HandOverSettings {
   double slack_tension_fraction = 0.1, taut_tension_fraction = 0.2;
   double slack_strain_fraction = 0.1, taut_strain_fraction = 0.2;
@@ -41,7 +47,7 @@ struct HandOverSettings {
 class HandOverSimulation : public Simulation {
  public:
   /// Why a run went to full order (counted per cause).
-  enum class Cause { start, slack, failure, indicator, fast_hoist };
+  enum class Cause { start, slack, failure, indicator, fast_hoist, ground };
   /// What a reduced step reports: carried, or the full model must take the step just begun
   /// (the reduced state is still at its start: a failed step, a hoist too fast for the basis).
   enum class Verdict { carried, failed, fast_hoist };
@@ -133,7 +139,7 @@ class HandOverSimulation : public Simulation {
 
  private:
   long full_order_steps_ = 0;
-  std::array<long, static_cast<int>(Cause::fast_hoist) + 1> hand_overs_{};  ///< per Cause
+  std::array<long, static_cast<int>(Cause::ground) + 1> hand_overs_{};  ///< per Cause
   double full_since_ = 0.0;  ///< time of the last hand-over [s]
   int hand_back_interval_ = 0, hand_back_countdown_ = 0;
 };

@@ -47,6 +47,9 @@ class PendulumCraneSimulation final : public SupportedRopeSimulation {
                                 Eigen::Vector3d* holding_force) override;
   Eigen::VectorXd straightRope(const Eigen::Vector3d& top,
                                const Eigen::Vector3d& dir) const override;
+  double unloadedHangingLength(double span) override;
+  Eigen::VectorXd unloadedHangingRope(const Eigen::Vector3d& top,
+                                      const Eigen::Vector3d& dir) const override;
   void initializeAccelerations(CoupledState& s) override { solver_->initializeAccelerations(s); }
   int endPointIndex() const override { return rigging_ ? 6 : 3; }
   double topTensionOf(const CoupledState& s) const override { return solver_->topTension(s); }

@@ -32,6 +32,9 @@ struct SeriesValues {
   double load_chart_ratio = 0.0;  ///< payload / allowed load at the current radius (0: no crane)
   int warnings = 0;               ///< bit set of Warning
   long full_order_steps = 0;      ///< reduced rope: steps integrated at full order so far
+  // The ground (docs/model.md "Ground contact"; 0 without `ground:`).
+  bool payload_landed = false;  ///< the payload presses on the ground (contact_force > 0)
+  double contact_force = 0.0;   ///< the ground's normal force on the payload [N]
 };
 
 /// Bits of SeriesValues::warnings.

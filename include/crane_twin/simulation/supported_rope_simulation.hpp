@@ -35,6 +35,8 @@ class SupportedRopeSimulation : public Simulation {
   const RopeSupport& support() const override { return *support_; }
   RopeSupport& support() { return *support_; }
   const CraneModel& model() const { return model_; }
+  /// The ground (empty without `ground:`).
+  const std::optional<GroundContact>& ground() const { return ground_; }
   const CoupledState& state() const { return state_; }
 
   /// The output row of a state in this model's coordinates.
@@ -45,6 +47,12 @@ class SupportedRopeSimulation : public Simulation {
   SeriesValues seriesWith(const CoupledState& s, const Eigen::Vector3d& payload,
                           const Eigen::Vector3d& payload_velocity, double tension, double energy,
                           double rope_length) const;
+  /// The hoist drive's length less the rope lying on the load: what hangs [m] (docs/model.md
+  /// "Ground contact").
+  double hangingLength() const { return drives_.hoistLength() - piled_; }
+  /// Rope lying on the landed load [m]: reeled in before the hanging rope shortens, added to
+  /// while the hook rests on the load and the hoist pays out.
+  double piledLength() const { return piled_; }
   /// Advance the drives by dt under the active command and move the support to their pose;
   /// false where nothing moved. z: the support's coordinates now (the caller's state: a reduced
   /// run integrates its own, not this run's state_), where the wind is taken.
@@ -64,6 +72,13 @@ class SupportedRopeSimulation : public Simulation {
   /// The initial state of the scene at t = 0 (docs/scenes.md, `initial`), accelerations
   /// consistent. Call after resetDrivesAndPose().
   CoupledState sceneInitialState();
+  /// `initial.mode: landed` (docs/scenes.md): the payload on the ground, the rope hanging
+  /// straight to it unloaded, the rest of rope.length lying on the load. Throws InputError
+  /// naming rope.length where the rope cannot reach.
+  CoupledState landedState();
+  /// After a step: whether the hook rests on the landed load (the payload on the ground and the
+  /// rope's end slack), so that rope paid out piles on the load.
+  void setHookResting(bool resting) { hook_resting_ = resting; }
 
   /// Equilibrium with the chord at swing_rad from the vertical, azimuth az_rad (the solver's).
   virtual CoupledState swingEquilibrium(double swing_rad, double az_rad,
@@ -71,6 +86,14 @@ class SupportedRopeSimulation : public Simulation {
   /// The rope straight and unstretched from `top` along the unit direction `dir`, at rest.
   virtual Eigen::VectorXd straightRope(const Eigen::Vector3d& top,
                                        const Eigen::Vector3d& dir) const = 0;
+  /// Set the hoist rope to the unstretched length that hangs straight down over `span` [m] at
+  /// rest with its end unloaded (the payload resting on the ground; a rigging's hook block
+  /// still on the rope), and return it (docs/scenes.md "initial.mode: landed").
+  virtual double unloadedHangingLength(double span) = 0;
+  /// That rope straight along `dir` from `top`, stretched by its own weight (and the hook
+  /// block's on a rigging), at rest; a rigging below it.
+  virtual Eigen::VectorXd unloadedHangingRope(const Eigen::Vector3d& top,
+                                              const Eigen::Vector3d& dir) const = 0;
   virtual void initializeAccelerations(CoupledState& s) = 0;
   /// Index in q of the end point's x coordinate.
   virtual int endPointIndex() const = 0;
@@ -84,7 +107,10 @@ class SupportedRopeSimulation : public Simulation {
   /// height. No effect without wind.
   void updateWind(double t, const Eigen::VectorXd& z, bool record = true);
 
-  const CraneModel model_;  ///< own copy: callers may pass a temporary
+  const CraneModel model_;                     ///< own copy: callers may pass a temporary
+  const std::optional<GroundContact> ground_;  ///< the scene's ground (the output's contact)
+  double piled_ = 0.0;                         ///< rope lying on the landed load [m]
+  bool hook_resting_ = false;  ///< the hook rests on the landed load (setHookResting)
   CraneDrives drives_;
   std::unique_ptr<RopeSupport> support_;
   CoupledState state_;

@@ -26,8 +26,10 @@
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
+#include <optional>
 #include <string>
 
+#include "crane_twin/elements/ground_contact.hpp"
 #include "crane_twin/integrators/coupled_state.hpp"
 #include "crane_twin/integrators/generalized_alpha.hpp"
 #include "crane_twin/integrators/newton_step.hpp"
@@ -84,6 +86,14 @@ class FullOrderSolver {
   /// Axial strain-rate damping of the rope, c [s] (ancfAxialDampingForce; 0: none). Throws
   /// std::invalid_argument for a negative or non-finite c.
   void setRopeDamping(double c);
+  /// The ground under the payload (docs/model.md "Ground contact"): its force acts on the
+  /// payload point (the end node, or the rigging's payload point) in every step, its energy
+  /// counts in energy(), and a step that lands or lifts off is taken energy-consistently (the
+  /// tension-only rule then runs for a symmetric rope too). Empty: no ground.
+  void setGround(std::optional<GroundContact> ground) { ground_ = std::move(ground); }
+  const std::optional<GroundContact>& ground() const { return ground_; }
+  /// The ground's force on the payload at a state (zero without ground) [N].
+  Eigen::Vector3d groundForce(const CoupledState& s) const;
   /// Half steps taken so far in place of failed steps (0 in a smooth run).
   long halvedSteps() const { return halved_steps_; }
   /// Energy-consistent steps taken so far (slack/taut switches; 0 for a rope that stays taut).
@@ -98,7 +108,7 @@ class FullOrderSolver {
   void refreshMass();
 
   /// Total mechanical energy: 1/2 v^T M v + U(q) - F_g^T q (gravity potential, zero at q = 0)
-  /// plus the support's kinetic and strain energy.
+  /// plus the support's kinetic and strain energy and the ground's spring energy.
   double energy(const CoupledState& s) const;
   /// Rope top tension [N]: the force between rope and trolley, |lambda + m_top (r_0'' - g)|
   /// (the support force less the trolley mass's weight and inertia).
@@ -142,6 +152,7 @@ class FullOrderSolver {
   double last_step_length_ = -1.0;  ///< the rope's length at the previous step() or start
   bool hoisting_ = false;           ///< the length changed since: judged by energy alone
   double rope_damping_ = 0.0;
+  std::optional<GroundContact> ground_;
   const AncfRope& rope_;
   RopeSupport& support_;
   GeneralizedAlpha ga_;

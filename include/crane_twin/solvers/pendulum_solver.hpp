@@ -15,8 +15,10 @@
 // added on [r_1; r_2]; the iteration matrix is 12 x 12.
 #pragma once
 
+#include <optional>
 #include <string>
 
+#include "crane_twin/elements/ground_contact.hpp"
 #include "crane_twin/integrators/coupled_state.hpp"
 #include "crane_twin/integrators/generalized_alpha.hpp"
 #include "crane_twin/integrators/newton_step.hpp"
@@ -49,6 +51,11 @@ class PendulumSolver {
   int dofs() const { return rigging_ ? 9 : 6; }
   /// Axial damping coefficient c [s] (0: none). Throws std::invalid_argument for c < 0.
   void setRopeDamping(double c);
+  /// The ground under the end point (the payload; docs/model.md "Ground contact"), its force
+  /// with the damping forces, its energy in energy(). Empty: no ground.
+  void setGround(std::optional<GroundContact> ground) { ground_ = std::move(ground); }
+  /// The ground's force on the payload at a state (zero without ground) [N].
+  Eigen::Vector3d groundForce(const CoupledState& s) const;
   static constexpr int kMaxHalvings = 6;
   long halvedSteps() const { return halved_steps_; }
   double timeStep() const { return h_; }
@@ -76,6 +83,7 @@ class PendulumSolver {
   double h_;
   NewtonSettings newton_;
   double damping_ = 0.0;
+  std::optional<GroundContact> ground_;
   long halved_steps_ = 0;
 };
 

@@ -1,0 +1,44 @@
+// The dynamic factor of a lift-off (docs/model.md "Ground contact"; EN 13001-2 / ISO 8686-1
+// phi_2): the peak rope top tension over the static one in the window after the load leaves the
+// ground. Fed the output rows of a run (docs/cli.md), whatever the model.
+//   lift-off  at the first row without ground contact after rows with it;
+//   phi_2     = max T_top(t) / T_static over [t_lift, t_lift + window], T_static the hanging
+//               weight at that row's rope length (staticTopTension);
+// a landing inside the window ends it. Sampled at the rows' interval: a peak of a tension
+// oscillation of period P is missed by at most 1 - cos(pi dt / P) of its amplitude.
+#pragma once
+
+#include "crane_twin/simulation/simulation.hpp"
+
+namespace crane_twin {
+
+struct CraneModel;
+
+/// The top tension of the load hanging at rest on rope length L [m]: (m_hook + m_payload +
+/// mu L) g [N] (the rope's weight hangs from the top as well).
+double staticTopTension(const CraneModel& model, double rope_length);
+
+class LiftOffMonitor {
+ public:
+  /// window > 0 [s] after each lift-off. Throws std::invalid_argument otherwise.
+  explicit LiftOffMonitor(double window = 3.0);
+  /// One output row and the static top tension for it [N].
+  void observe(const SeriesValues& row, double static_tension);
+  /// Lift-offs seen so far.
+  int liftOffs() const { return lift_offs_; }
+  /// The largest phi_2 over the lift-offs so far (0: none yet).
+  double factor() const { return factor_; }
+  /// phi_2 of the last lift-off so far (0: none yet), and its time [s].
+  double lastFactor() const { return last_factor_; }
+  double lastLiftOffTime() const { return last_time_; }
+  /// Within a lift-off's window now.
+  bool measuring() const { return measuring_; }
+
+ private:
+  double window_;
+  bool was_landed_ = false, measuring_ = false;
+  int lift_offs_ = 0;
+  double factor_ = 0.0, last_factor_ = 0.0, last_time_ = 0.0;
+};
+
+}  // namespace crane_twin

@@ -1,0 +1,44 @@
+#include "crane_twin/simulation/lift_off_monitor.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "crane_twin/simulation/crane_model.hpp"
+
+namespace crane_twin {
+
+double staticTopTension(const CraneModel& m, double rope_length) {
+  return (m.hangingPointMass() + m.rope.mass_per_length * rope_length) * m.scene.gravity;
+}
+
+LiftOffMonitor::LiftOffMonitor(double window) : window_(window) {
+  if (!(std::isfinite(window) && window > 0.0))
+    throw std::invalid_argument("lift-off window must be finite and > 0");
+}
+
+void LiftOffMonitor::observe(const SeriesValues& row, double static_tension) {
+  if (row.payload_landed) {
+    was_landed_ = true;
+    measuring_ = false;  // landed again: the window ends
+    return;
+  }
+  if (was_landed_) {
+    was_landed_ = false;
+    measuring_ = true;
+    ++lift_offs_;
+    last_time_ = row.t;
+    last_factor_ = 0.0;
+  }
+  if (!measuring_) return;
+  if (row.t > last_time_ + window_) {
+    measuring_ = false;
+    return;
+  }
+  if (static_tension > 0.0) {
+    last_factor_ = std::max(last_factor_, row.rope_top_tension / static_tension);
+    factor_ = std::max(factor_, last_factor_);
+  }
+}
+
+}  // namespace crane_twin
