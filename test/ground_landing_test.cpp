@@ -19,6 +19,7 @@
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/simulation/lift_off_monitor.hpp"
 #include "crane_twin/simulation/simulation.hpp"
+#include "crane_twin/simulation/supported_rope_simulation.hpp"
 
 using namespace crane_twin;
 
@@ -152,8 +153,66 @@ initial: {mode: landed}
   }
 }
 
-// The load landed at rest, slack rope (bowed at the start), no command: it stays where it is
-// (the rope swings beside it), and the energy never rises.
+// On the T8036 the hook's stiffness is the rope's in series with the structure's vertical
+// compliance at the trolley, c_s = (D K_z^-1 D^T)_zz of the modal structure (the jib and the
+// mast bending under the hook load): phi_2 = 1 + v_h sqrt(k / m) / g with
+// 1 / k = (L + L_r / n) / (n EA) + c_s. That closed form takes the structure as a massless
+// spring; the T8036's lowest modes (0.10 to 0.78 Hz, `crane_sim modes --part structure`) are
+// not faster than the lift-off's 0.96 Hz, so it holds where the tension builds slowly: within 5 %
+// at 0.1 m/s (2.7 s from slack to lift-off); at 0.2 and 0.5 m/s the structure's own swing under
+// the tension ramp moves phi_2 by -6 and +12 % (printed, docs/model.md "Ground contact").
+TEST(GroundLanding, T8036LiftOffFactorIsTheSeriesStiffnessClosedForm) {
+  const std::string crane = fastHoistCrane();
+  const std::string scene = writeScene("lift_off_t8036", "crane: " + crane + R"(
+duration: 6.0
+time_step: 0.001
+output_interval: 0.002
+structure: {model: modal, modes: 100, damping_ratio: 0.01}
+rope: {model: full, elements: 30, length: 60.0, damping: 0.001}
+payload: {mass: 3600}
+trolley: {radius: 30}
+ground: {height: 0.0}
+initial: {mode: landed}
+)");
+  // The landed start holds the structure undeformed: the rope's top at the support's point.
+  const CraneModel base = buildCraneModel(loadScene(scene));
+  std::unique_ptr<RopeSupport> base_support = makeRopeSupport(base);
+  base_support->setPose(0.0, base.scene.trolley_radius);
+  const double top = base_support->point(Eigen::VectorXd::Zero(base_support->size())).z();
+  for (const std::string model : {"pendulum", "full"}) {
+    for (double v : {0.1, 0.2, 0.5}) {
+      std::vector<std::string> sets = {"rope.model=" + model};
+      const CraneModel probe = buildCraneModel(loadScene(scene, sets));
+      const double d = top - (probe.scene.ground->height + probe.scene.payload_height);
+      sets.push_back("rope.length=" + std::to_string(d + 0.03));
+      std::ostringstream cmd;
+      cmd << "commands=[{t: 0.0, hoist_speed: " << -v << "}]";
+      sets.push_back(cmd.str());
+      const CraneModel m = buildCraneModel(loadScene(scene, sets));
+      std::unique_ptr<RopeSupport> support = makeRopeSupport(m);
+      support->setPose(0.0, m.scene.trolley_radius);
+      const double cs = support->setIterationWeights(0.0, 0.0, 1.0)(2, 2);
+      const LandingRun r = run(m);
+      ASSERT_EQ(r.monitor.liftOffs(), 1) << model << " v " << v;
+      const double L = r.lift_length;
+      const double k = 1.0 / (L / m.rope.axialStiffnessAt(L) + cs);
+      const double expected = 1.0 + v * std::sqrt(k / m.hangingPointMass()) / m.scene.gravity;
+      std::printf(
+          "T8036 %s, v_h %.1f m/s: structure %.3g m/N, rope %.3g m/N: phi_2 %.4f, "
+          "closed form %.4f (%+.2f %%)\n",
+          model.c_str(), v, cs, L / m.rope.axialStiffnessAt(L), r.monitor.factor(), expected,
+          100.0 * (r.monitor.factor() / expected - 1.0));
+      if (v == 0.1) {
+        EXPECT_NEAR(r.monitor.factor(), expected, 0.05 * expected) << model << " v " << v;
+      }
+    }
+  }
+}
+
+// The load landed at rest, 0.7 m of rope lying on it, no command: it stays where it is, and
+// the energy never rises after the structure's first steps (the modal structure's start
+// exchanges 0.1 J of 1 MJ in its first step, with or without a ground; the rigid structure's
+// none).
 TEST(GroundLanding, LoadAtRestStaysAtRest) {
   const std::string scene = writeScene("rest", std::string("crane: ") + CRANE_TWIN_SOURCE_DIR +
                                                    R"(/config/cranes/t8036.yaml
@@ -169,12 +228,15 @@ initial: {mode: landed}
 )");
   for (const std::string model : {"full", "pendulum", "reduced"}) {
     const CraneModel m = buildCraneModel(loadScene(scene, {"rope.model=" + model}));
-    const LandingRun r = run(m, 0.0);
+    const LandingRun r = run(m, 0.1);
     std::printf("%s: drift %.3g m, energy rise %.3g J\n", model.c_str(), r.max_drift,
                 r.e_max_after - r.e_start);
     EXPECT_TRUE(r.always_landed) << model;
     EXPECT_LT(r.max_drift, 1e-3) << model;
-    EXPECT_LE(r.e_max_after - r.e_start, 1e-9 * std::abs(r.e_start) + 1e-6) << model;
+    double e01 = 0.0;
+    for (std::size_t i = 0; i < r.t.size(); ++i)
+      if (r.t[i] <= 0.1 + 1e-9) e01 = r.energy[i];
+    EXPECT_LE(r.e_max_after, e01 + 1e-9 * std::abs(e01) + 1e-6) << model;
     EXPECT_EQ(r.monitor.liftOffs(), 0) << model;
   }
 }

@@ -180,15 +180,29 @@ CoupledState SupportedRopeSimulation::landedState() {
   const GroundContactParameters& g = ground_->parameters();
   CoupledState s;
   s.z = s.zd = Eigen::VectorXd::Zero(support_->size());
-  const Eigen::Vector3d top = support_->point(s.z);
   const double sink = model_.end_mass * sc.gravity / g.stiffness;
-  const Eigen::Vector3d end(top.x() + sc.payload_offset.x(), top.y() + sc.payload_offset.y(),
-                            g.height + g.payload_height - sink);
   const double rigging = sc.hasRigging() ? sc.hook_rigging_length : 0.0;
-  const Eigen::Vector3d dir = (end - top).normalized();
-  const double span = (end - top).norm() - rigging;
   const double L = sc.rope.length;
-  const double hanging = span > 0.0 ? unloadedHangingLength(span) : 0.0;
+  // The structure at rest under what hangs from it (the trolley, the hanging rope, and the
+  // hook block with half the rigging on a rigging): z = K_z^-1 D^T f. Two passes: the hanging
+  // length depends on where the top sinks to.
+  Eigen::Vector3d top, end, dir;
+  double span = 0.0, hanging = 0.0;
+  for (int pass = 0; pass < 2; ++pass) {
+    top = support_->point(s.z);
+    end = Eigen::Vector3d(top.x() + sc.payload_offset.x(), top.y() + sc.payload_offset.y(),
+                          g.height + g.payload_height - sink);
+    dir = (end - top).normalized();
+    span = (end - top).norm() - rigging;
+    hanging = span > 0.0 ? unloadedHangingLength(span) : 0.0;
+    if (support_->size() == 0 || !(span > 0.0)) break;
+    const double hook = sc.hasRigging() ? model_.hook_mass + 0.5 * sc.rope.mass_per_length *
+                                                                 sc.hook_rigging_length
+                                        : 0.0;
+    const double held = model_.trolleyMass() + model_.rope.mass_per_length * hanging + hook;
+    support_->setIterationWeights(0.0, 0.0, 1.0);
+    s.z = support_->solvePointForce(Eigen::Vector3d(0.0, 0.0, -held * sc.gravity));
+  }
   if (!(span > 0.0) || L < hanging) {
     char b[320];
     std::snprintf(b, sizeof b,
