@@ -105,6 +105,20 @@ double closedFormPhi2(const CraneModel& m, double v, double L) {
   return 1.0 + v * std::sqrt(k / m.hangingPointMass()) / m.scene.gravity;
 }
 
+// The scene with `sets`, rope model `model` and a rope 3 cm longer than the distance from the
+// rope's top at height `top` to the landed hook, reeled in at v_h from t = 0.
+CraneModel liftOffModel(const std::string& scene, std::vector<std::string> sets,
+                        const std::string& model, double v, double top) {
+  sets.push_back("rope.model=" + model);
+  const CraneModel probe = buildCraneModel(loadScene(scene, sets));
+  const double d = top - (probe.scene.ground->height + probe.scene.payload_height);
+  sets.push_back("rope.length=" + std::to_string(d + 0.03));
+  std::ostringstream cmd;
+  cmd << "commands=[{t: 0.0, hoist_speed: " << -v << "}]";
+  sets.push_back(cmd.str());
+  return buildCraneModel(loadScene(scene, sets));
+}
+
 }  // namespace
 
 // A light rope (mass_per_length 0.019 kg/m per fall, 2.5 kg hanging) so that the closed form's
@@ -131,16 +145,7 @@ initial: {mode: landed}
     const double top = topHeight(scene, base);
     for (const std::string model : {"pendulum", "full"}) {
       for (double v : {0.5, 1.0}) {
-        std::vector<std::string> sets = base;
-        sets.push_back("rope.model=" + model);
-        const CraneModel probe = buildCraneModel(loadScene(scene, sets));
-        const double d = top - (probe.scene.ground->height + probe.scene.payload_height);
-        // 3 cm of slack, reeled in at speed v from t = 0.
-        sets.push_back("rope.length=" + std::to_string(d + 0.03));
-        std::ostringstream cmd;
-        cmd << "commands=[{t: 0.0, hoist_speed: " << -v << "}]";
-        sets.push_back(cmd.str());
-        const CraneModel m = buildCraneModel(loadScene(scene, sets));
+        const CraneModel m = liftOffModel(scene, base, model, v, top);
         const LandingRun r = run(m);
         ASSERT_EQ(r.monitor.liftOffs(), 1) << model << " v " << v;
         const double expected = closedFormPhi2(m, v, r.lift_length);
@@ -174,21 +179,15 @@ trolley: {radius: 30}
 ground: {height: 0.0}
 initial: {mode: landed}
 )");
-  // The landed start holds the structure undeformed: the rope's top at the support's point.
+  // The undeformed support's point (the landed start sinks it by the trolley's and the rope's
+  // weight: a few cm more slack).
   const CraneModel base = buildCraneModel(loadScene(scene));
   std::unique_ptr<RopeSupport> base_support = makeRopeSupport(base);
   base_support->setPose(0.0, base.scene.trolley_radius);
   const double top = base_support->point(Eigen::VectorXd::Zero(base_support->size())).z();
   for (const std::string model : {"pendulum", "full"}) {
     for (double v : {0.1, 0.2, 0.5}) {
-      std::vector<std::string> sets = {"rope.model=" + model};
-      const CraneModel probe = buildCraneModel(loadScene(scene, sets));
-      const double d = top - (probe.scene.ground->height + probe.scene.payload_height);
-      sets.push_back("rope.length=" + std::to_string(d + 0.03));
-      std::ostringstream cmd;
-      cmd << "commands=[{t: 0.0, hoist_speed: " << -v << "}]";
-      sets.push_back(cmd.str());
-      const CraneModel m = buildCraneModel(loadScene(scene, sets));
+      const CraneModel m = liftOffModel(scene, {}, model, v, top);
       std::unique_ptr<RopeSupport> support = makeRopeSupport(m);
       support->setPose(0.0, m.scene.trolley_radius);
       const double cs = support->setIterationWeights(0.0, 0.0, 1.0)(2, 2);

@@ -196,9 +196,9 @@ CoupledState SupportedRopeSimulation::landedState() {
     span = (end - top).norm() - rigging;
     hanging = span > 0.0 ? unloadedHangingLength(span) : 0.0;
     if (support_->size() == 0 || !(span > 0.0)) break;
-    const double hook = sc.hasRigging() ? model_.hook_mass + 0.5 * sc.rope.mass_per_length *
-                                                                 sc.hook_rigging_length
-                                        : 0.0;
+    const double hook =
+        sc.hasRigging() ? model_.hook_mass + 0.5 * sc.rope.mass_per_length * sc.hook_rigging_length
+                        : 0.0;
     const double held = model_.trolleyMass() + model_.rope.mass_per_length * hanging + hook;
     support_->setIterationWeights(0.0, 0.0, 1.0);
     s.z = support_->solvePointForce(Eigen::Vector3d(0.0, 0.0, -held * sc.gravity));
