@@ -470,3 +470,24 @@ TEST(CraneSimCli, SummaryCountsEnergyConsistentSteps) {
   ASSERT_NE(at, std::string::npos) << slack.out;
   EXPECT_GT(std::stol(slack.out.substr(at + 25)), 0) << slack.out;
 }
+
+// A lift-off above the scene's design factor (hoist.design_phi2) sets warning bit 128 in the
+// rows of its window and the summary; below it, nothing. The pendulum rope runs the shipped
+// fast lift-off (phi_2 about 1.83) in a fraction of a second.
+TEST(CraneSimCli, LiftOffOverTheDesignFactorIsAWarning) {
+  const std::string scene = std::string(CRANE_TWIN_SOURCE_DIR) +
+                            "/config/scenes/t8036_lift_off_fast.yaml --set rope.model=pendulum "
+                            "--set duration=6 --quiet";
+  Result r = run("run " + scene + " --set hoist.design_phi2=1.5");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find(" lift_offs=1 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("warnings_seen=128 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("lift-off dynamic factor over hoist.design_phi2"), std::string::npos);
+  r = run("run " + scene + " --set hoist.design_phi2=2.5");
+  ASSERT_EQ(r.status, 0) << r.out;
+  EXPECT_NE(r.out.find(" lift_offs=1 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("warnings_seen=0 "), std::string::npos) << r.out;
+  r = run("run " + scene + " --set hoist.design_phi2=0.5");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("hoist.design_phi2"), std::string::npos) << r.out;
+}

@@ -148,8 +148,9 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   std::map<int, long> warned;
   ct::LiftOffMonitor lift_off;
   auto emit = [&]() {
-    const ct::SeriesValues v = sim->series();
+    ct::SeriesValues v = sim->series();
     lift_off.observe(v, ct::staticTopTension(m, v.rope_length));
+    v.warnings |= lift_off.warningFor(sc.hoist_design_phi2);
     if (series) ct::writeSeriesRow(series, v);
     if (nodes) sim->writeNodeRows(nodes);
     for (int bit = 1; bit <= ct::kLastWarning; bit <<= 1) {

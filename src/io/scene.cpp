@@ -257,6 +257,14 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     }
     s.wind = w;
   }
+  {
+    ConfigNode n = root.map("hoist");
+    s.hoist_design_phi2 = n.number("design_phi2", 0.0, Bounds::any());
+    if (n.has("design_phi2") && !(s.hoist_design_phi2 >= 1.0 && s.hoist_design_phi2 <= 10.0)) {
+      n.fail("design_phi2", "must be in [1, 10] (a dynamic factor)");
+    }
+    n.finish();
+  }
   if (root.has("ground")) {
     ConfigNode n = root.map("ground");
     GroundSettings g;

@@ -28,6 +28,8 @@ const char* warningName(int bit) {
       return "trolley at its radius limit";
     case kCommandLimited:
       return "command above a drive's speed limit, limited";
+    case kLiftOffOverDesignFactor:
+      return "lift-off dynamic factor over hoist.design_phi2";
     case kWindOverInServiceLimit:
       return "3 s mean wind at the jib over the in-service limit";
     case kTensionOverWorkingLoadLimit:

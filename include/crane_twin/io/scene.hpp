@@ -96,6 +96,9 @@ struct Scene {
   double gravity = 9.81;
   /// `wind:` (docs/scenes.md; empty: no wind, until a measured wind arrives at the node).
   std::optional<WindSettings> wind;
+  /// `hoist.design_phi2`: the dynamic factor phi_2 the crane is designed for (EN 13001-2); a
+  /// lift-off above it sets warning bit 128 (0: no check).
+  double hoist_design_phi2 = 0.0;
   /// `ground:` (empty: no ground, the payload can only hang).
   std::optional<GroundSettings> ground;
   std::vector<CommandEntry> commands;

@@ -33,6 +33,12 @@ class LiftOffMonitor {
   double lastLiftOffTime() const { return last_time_; }
   /// Within a lift-off's window now.
   bool measuring() const { return measuring_; }
+  /// Warning bit kLiftOffOverDesignFactor for the row just observed: within a lift-off's window
+  /// and its factor so far above design_phi2 (0: no check).
+  int warningFor(double design_phi2) const {
+    return design_phi2 > 0.0 && measuring_ && last_factor_ > design_phi2 ? kLiftOffOverDesignFactor
+                                                                         : 0;
+  }
 
  private:
   double window_;

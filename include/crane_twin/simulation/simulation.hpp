@@ -46,7 +46,8 @@ enum Warning : int {
   kCommandLimited = 16,               ///< a command above a drive's speed limit was limited
   kTensionOverWorkingLoadLimit = 32,  ///< tension_ratio > 1 / rope.safety_factor
   kWindOverInServiceLimit = 64,  ///< 3 s mean wind at the jib's height above wind.in_service_limit
-  kLastWarning = kWindOverInServiceLimit,
+  kLiftOffOverDesignFactor = 128,  ///< a lift-off's dynamic factor above hoist.design_phi2
+  kLastWarning = kLiftOffOverDesignFactor,
 };
 /// Human-readable name of one warning bit.
 const char* warningName(int bit);
