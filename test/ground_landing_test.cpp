@@ -269,6 +269,7 @@ commands:
     std::printf("%s: max penetration %.4g m, energy after the hoist stops %.6g .. end %.6g J\n",
                 model.c_str(), r.max_penetration, r.e_max_after, r.energy.back());
     EXPECT_GT(r.max_penetration, 0.0) << model;  // it landed
+    EXPECT_EQ(r.monitor.liftOffs(), 0) << model;  // a set-down is no lift
     EXPECT_LT(r.max_penetration, 0.01) << model;
     // From 4.5 s on (hoist at rest): never above the energy at 4.5 s.
     double e45 = 0.0;
@@ -276,6 +277,41 @@ commands:
       if (r.t[i] <= 4.5) e45 = r.energy[i];
     EXPECT_LE(r.e_max_after, e45 + 1e-9 * std::abs(e45) + 1e-6) << model;
   }
+}
+
+// The monitor on synthetic rows: a bounce (off the ground for 0.2 s) is no lift and carries no
+// factor; a lift counts once 0.5 s off the ground, its factor the peak tension over the static
+// one in the window, the rows before its confirmation included; a landing ends the window.
+TEST(GroundLanding, LiftOffMonitorCountsLiftsNotBounces) {
+  LiftOffMonitor mon(3.0);
+  auto row = [&](double t, bool landed, double tension) {
+    SeriesValues v;
+    v.t = t;
+    v.payload_landed = landed;
+    v.rope_top_tension = tension;
+    mon.observe(v, 1000.0);
+  };
+  for (double t = 0.0; t < 1.0; t += 0.01) row(t, true, 500.0);
+  for (double t = 1.0; t < 1.2; t += 0.01) row(t, false, 1900.0);  // a bounce at 1.9
+  EXPECT_EQ(mon.liftOffs(), 0);
+  for (double t = 1.2; t < 2.0; t += 0.01) row(t, true, 800.0);
+  EXPECT_EQ(mon.liftOffs(), 0);
+  EXPECT_EQ(mon.factor(), 0.0);
+  EXPECT_EQ(mon.warningFor(1.2), 0);
+  row(2.0, false, 1100.0);
+  row(2.1, false, 1450.0);  // the peak, before the confirmation
+  EXPECT_EQ(mon.liftOffs(), 0);
+  for (double t = 2.2; t < 2.6; t += 0.01) row(t, false, 1200.0);
+  EXPECT_EQ(mon.liftOffs(), 1);
+  EXPECT_DOUBLE_EQ(mon.factor(), 1.45);
+  EXPECT_DOUBLE_EQ(mon.lastLiftOffTime(), 2.0);
+  EXPECT_EQ(mon.warningFor(1.4), kLiftOffOverDesignFactor);
+  EXPECT_EQ(mon.warningFor(1.5), 0);
+  for (double t = 2.6; t < 6.0; t += 0.01) row(t, false, 1300.0);
+  EXPECT_FALSE(mon.measuring());
+  row(6.0, false, 5000.0);  // after the window: not a lift-off's peak
+  EXPECT_DOUBLE_EQ(mon.factor(), 1.45);
+  EXPECT_THROW(LiftOffMonitor(0.2), std::invalid_argument);
 }
 
 TEST(GroundLanding, BadKeysAreRefusedWithTheKeyNamed) {

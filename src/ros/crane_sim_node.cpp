@@ -136,6 +136,7 @@ void CraneSimNode::resetSimulation() {
 void CraneSimNode::restartSimulation() {
   sim_ = makeSimulation(model_);
   sim_->initialize();
+  lift_off_ = LiftOffMonitor();
   if (measured_wind_) sim_->setMeasuredWind(*measured_wind_);
   twin_->restart(model_, *sim_);
   follower_.cancel();
@@ -441,7 +442,9 @@ void CraneSimNode::publish() {
       last_structure_wall_.isZero() ||
       (now - last_structure_wall_).toSec() >= 1.0 / settings_.structure_marker_rate;
   if (options.structure_segments) last_structure_wall_ = now;
-  const CraneSnapshot s = snapshotOf(*sim_, options);
+  CraneSnapshot s = snapshotOf(*sim_, options);
+  lift_off_.observe(s.series, staticTopTension(model_, s.series.rope_length));
+  s.series.warnings |= lift_off_.warningFor(model_.scene.hoist_design_phi2);
   warnings_seen_ |= s.series.warnings;
   last_wind_3s_ = s.series.wind_3s;
   if (settings_.publish_clock) {
@@ -453,11 +456,15 @@ void CraneSimNode::publish() {
   recorder_->published(joint_pub_);
   tf_.sendTransform(toTransforms(s, st + tf_stamp_offset_, frames_));
   const double payload_mass = model_.scene.payload_mass;
+  const std::optional<double> ground =
+      model_.scene.ground ? std::optional<double>(model_.scene.ground->height) : std::nullopt;
   marker_pub_.publish(toMarkers(s, st, loadShapes(s, model_.scene.hookBlockMass(), payload_mass),
-                                payload_mass, frames_));
+                                payload_mass, frames_, ground));
   recorder_->published(marker_pub_);
   last_state_ = toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model, frames_);
   last_state_.t += t_offset_;
+  last_state_.lift_offs = lift_off_.liftOffs();
+  last_state_.lift_off_factor = lift_off_.factor();
   state_pub_.publish(last_state_);
   recorder_->published(state_pub_);
   last_state_wall_ = now;

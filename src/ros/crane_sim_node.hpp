@@ -24,6 +24,7 @@
 #include "crane_twin/drives/command_guard.hpp"
 #include "crane_twin/drives/trajectory_follower.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
+#include "crane_twin/simulation/lift_off_monitor.hpp"
 #include "crane_twin/simulation/pacer.hpp"
 #include "crane_twin/simulation/simulation.hpp"
 #include "node_settings.hpp"
@@ -66,6 +67,7 @@ class CraneSimNode {
   std::vector<ros::Subscriber> follower_subs_;
   std::vector<double> follower_t_;  ///< latest simulated time of each clock follower [s]
   CraneState last_state_;           ///< the last crane/state published
+  LiftOffMonitor lift_off_;         ///< lift-offs and their dynamic factor (crane/state)
   /// While paused under simulated time: TF stamps step by 1 ns a publication past the frozen
   /// clock (tf2 drops a transform whose stamp repeats).
   ros::Duration tf_stamp_offset_;

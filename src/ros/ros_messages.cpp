@@ -120,8 +120,22 @@ std::vector<geometry_msgs::TransformStamped> toTransforms(const CraneSnapshot& s
 
 visualization_msgs::MarkerArray toMarkers(const CraneSnapshot& s, const ros::Time& stamp,
                                           const LoadShapes& loads, double payload_mass,
-                                          const CraneFrames& f) {
+                                          const CraneFrames& f,
+                                          std::optional<double> ground_height) {
   visualization_msgs::MarkerArray a;
+  if (ground_height) {
+    // 20 m x 20 m, 0.2 m thick, its top at the ground height, under the payload.
+    auto ground = marker(f, "ground", visualization_msgs::Marker::CUBE, stamp);
+    ground.pose.position =
+        point(Eigen::Vector3d(s.series.payload.x(), s.series.payload.y(), *ground_height - 0.1));
+    ground.pose.orientation.w = 1.0;
+    ground.scale.x = ground.scale.y = 20.0;
+    ground.scale.z = 0.2;
+    ground.color.r = 0.35f;
+    ground.color.g = 0.3f;
+    ground.color.b = 0.25f;
+    a.markers.push_back(ground);
+  }
   auto rope = marker(f, "rope", visualization_msgs::Marker::LINE_STRIP, stamp);
   rope.scale.x = 0.12;
   rope.color.r = rope.color.g = rope.color.b = 0.85f;
@@ -192,6 +206,8 @@ CraneState toStateMessage(const CraneSnapshot& s, const ros::Time& stamp, double
   m.step_compute_time = step_cost;
   m.real_time_factor = real_time_factor;
   m.model = model;
+  m.payload_landed = v.payload_landed;
+  m.contact_force = v.contact_force;
   return m;
 }
 

@@ -6,6 +6,7 @@
 #include <sensor_msgs/JointState.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,10 +51,12 @@ std::vector<geometry_msgs::TransformStamped> toTransforms(const CraneSnapshot& s
                                                           const ros::Time& stamp,
                                                           const CraneFrames& f = {});
 /// Rope LINE_STRIP, hook block and payload CUBEs (`loads`), the payload's mass as text,
-/// deformed structure LINE_LIST (frame <prefix>base, namespaces <prefix>rope, ...).
+/// deformed structure LINE_LIST (frame <prefix>base, namespaces <prefix>rope, ...); with a
+/// ground height [m], a 20 m square slab of ground under the payload (namespace ground).
 visualization_msgs::MarkerArray toMarkers(const CraneSnapshot& s, const ros::Time& stamp,
                                           const LoadShapes& loads, double payload_mass,
-                                          const CraneFrames& f = {});
+                                          const CraneFrames& f = {},
+                                          std::optional<double> ground_height = std::nullopt);
 /// The docs/cli.md row with the step cost [s] and real-time factor (frame <prefix>base).
 CraneState toStateMessage(const CraneSnapshot& s, const ros::Time& stamp, double step_cost,
                           double real_time_factor, const std::string& model,

@@ -121,11 +121,7 @@ void CraneSimulation::stepAfterDrives() {
   applyRopeLength(state_);
   solver_->step(state_);
   if (ground_) {
-    // The hook rests on the landed load: the payload pressed on the ground and the rope's
-    // last node slack.
-    const int last = rope_->elements();
-    setHookResting(solver_->groundForce(state_).z() > 0.0 &&
-                   state_.q.segment<3>(6 * last + 3).norm() <= 1.0);
+    setHookResting(solver_->groundForce(state_).z() > 0.0, solver_->topTension(state_));
   }
 }
 

@@ -13,30 +13,37 @@ double staticTopTension(const CraneModel& m, double rope_length) {
 }
 
 LiftOffMonitor::LiftOffMonitor(double window) : window_(window) {
-  if (!(std::isfinite(window) && window > 0.0))
-    throw std::invalid_argument("lift-off window must be finite and > 0");
+  if (!(std::isfinite(window) && window > kConfirmation))
+    throw std::invalid_argument("lift-off window must be finite and longer than the confirmation");
 }
 
 void LiftOffMonitor::observe(const SeriesValues& row, double static_tension) {
   if (row.payload_landed) {
     was_landed_ = true;
-    measuring_ = false;  // landed again: the window ends
+    measuring_ = false;  // landed again: the window ends (and a bounce is forgotten)
     return;
   }
   if (was_landed_) {
     was_landed_ = false;
     measuring_ = true;
-    ++lift_offs_;
-    last_time_ = row.t;
-    last_factor_ = 0.0;
+    confirmed_ = false;
+    candidate_time_ = row.t;
+    candidate_factor_ = 0.0;
   }
   if (!measuring_) return;
-  if (row.t > last_time_ + window_) {
+  if (row.t > candidate_time_ + window_) {
     measuring_ = false;
     return;
   }
-  if (static_tension > 0.0) {
-    last_factor_ = std::max(last_factor_, row.rope_top_tension / static_tension);
+  if (static_tension > 0.0)
+    candidate_factor_ = std::max(candidate_factor_, row.rope_top_tension / static_tension);
+  if (!confirmed_ && row.t >= candidate_time_ + kConfirmation) {
+    confirmed_ = true;  // off the ground long enough: a lift, not a bounce
+    ++lift_offs_;
+    last_time_ = candidate_time_;
+  }
+  if (confirmed_) {
+    last_factor_ = candidate_factor_;
     factor_ = std::max(factor_, last_factor_);
   }
 }

@@ -81,8 +81,7 @@ void PendulumCraneSimulation::step() {
   }
   solver_->step(state_);
   if (ground_) {
-    setHookResting(solver_->groundForce(state_).z() > 0.0 &&
-                   rope_->tension(state_.q.head<6>()) <= 0.0);
+    setHookResting(solver_->groundForce(state_).z() > 0.0, solver_->topTension(state_));
   }
 }
 

@@ -150,6 +150,17 @@ void SupportedRopeSimulation::continueDrivesFrom(const SupportedRopeSimulation& 
   updateWind(o.state_.t, o.state_.z, false);
 }
 
+void SupportedRopeSimulation::setHookResting(bool landed, double top_tension) {
+  if (!landed) {
+    hook_resting_ = false;
+    return;
+  }
+  const double g = model_.scene.gravity;
+  const double unloaded =
+      (model_.rope.mass_per_length * ropeLength() + kRestingLoadFraction * model_.end_mass) * g;
+  if (top_tension <= unloaded) hook_resting_ = true;
+}
+
 bool SupportedRopeSimulation::advanceDrives(double t, double dt, const Eigen::VectorXd& z) {
   const double before = drives_.hoistLength();
   const bool moved = drives_.advance(t, dt);

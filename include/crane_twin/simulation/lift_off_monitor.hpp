@@ -1,7 +1,9 @@
 // The dynamic factor of a lift-off (docs/model.md "Ground contact"; EN 13001-2 / ISO 8686-1
 // phi_2): the peak rope top tension over the static one in the window after the load leaves the
 // ground. Fed the output rows of a run (docs/cli.md), whatever the model.
-//   lift-off  at the first row without ground contact after rows with it;
+//   lift-off  at the first row without ground contact after rows with it, counted once the load
+//             has stayed off the ground for kConfirmation (a load that lands again sooner
+//             bounced: a set-down's bounce is no lift);
 //   phi_2     = max T_top(t) / T_static over [t_lift, t_lift + window], T_static the hanging
 //               weight at that row's rope length (staticTopTension);
 // a landing inside the window ends it. Sampled at the rows' interval: a peak of a tension
@@ -20,7 +22,8 @@ double staticTopTension(const CraneModel& model, double rope_length);
 
 class LiftOffMonitor {
  public:
-  /// window > 0 [s] after each lift-off. Throws std::invalid_argument otherwise.
+  static constexpr double kConfirmation = 0.5;  ///< [s] off the ground to count as a lift
+  /// window > kConfirmation [s] after each lift-off. Throws std::invalid_argument otherwise.
   explicit LiftOffMonitor(double window = 3.0);
   /// One output row and the static top tension for it [N].
   void observe(const SeriesValues& row, double static_tension);
@@ -31,18 +34,20 @@ class LiftOffMonitor {
   /// phi_2 of the last lift-off so far (0: none yet), and its time [s].
   double lastFactor() const { return last_factor_; }
   double lastLiftOffTime() const { return last_time_; }
-  /// Within a lift-off's window now.
+  /// Within a lift-off's window now (from the load's leaving, confirmed or not).
   bool measuring() const { return measuring_; }
   /// Warning bit kLiftOffOverDesignFactor for the row just observed: within a lift-off's window
   /// and its factor so far above design_phi2 (0: no check).
   int warningFor(double design_phi2) const {
-    return design_phi2 > 0.0 && measuring_ && last_factor_ > design_phi2 ? kLiftOffOverDesignFactor
-                                                                         : 0;
+    return design_phi2 > 0.0 && measuring_ && confirmed_ && last_factor_ > design_phi2
+               ? kLiftOffOverDesignFactor
+               : 0;
   }
 
  private:
   double window_;
-  bool was_landed_ = false, measuring_ = false;
+  bool was_landed_ = false, measuring_ = false, confirmed_ = false;
+  double candidate_time_ = 0.0, candidate_factor_ = 0.0;  ///< the window under way
   int lift_offs_ = 0;
   double factor_ = 0.0, last_factor_ = 0.0, last_time_ = 0.0;
 };

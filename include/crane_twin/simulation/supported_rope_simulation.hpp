@@ -76,9 +76,12 @@ class SupportedRopeSimulation : public Simulation {
   /// straight to it unloaded, the rest of rope.length lying on the load. Throws InputError
   /// naming rope.length where the rope cannot reach.
   CoupledState landedState();
-  /// After a step: whether the hook rests on the landed load (the payload on the ground and the
-  /// rope's end slack), so that rope paid out piles on the load.
-  void setHookResting(bool resting) { hook_resting_ = resting; }
+  /// After a step: whether the payload presses on the ground, and the rope's top tension [N].
+  /// The hook rests on the landed load (rope paid out piles on it) from when the rope carries
+  /// less than its own weight and a tenth of the end mass's (kRestingLoadFraction) until the
+  /// payload leaves the ground: the rope's axial ringing after a set-down does not take it off.
+  void setHookResting(bool landed, double top_tension);
+  static constexpr double kRestingLoadFraction = 0.1;
 
   /// Equilibrium with the chord at swing_rad from the vertical, azimuth az_rad (the solver's).
   virtual CoupledState swingEquilibrium(double swing_rad, double az_rad,
