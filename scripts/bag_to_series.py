@@ -18,7 +18,8 @@ import rosbag
 COLUMNS = ("t,payload_x,payload_y,payload_z,payload_vx,payload_vy,payload_vz,cab_dx,cab_dy,"
            "cab_dz,jib_tip_dx,jib_tip_dy,jib_tip_dz,trolley_x,trolley_y,trolley_z,"
            "rope_top_tension,rope_length,slew_angle,trolley_radius,energy,constraint_error,"
-           "subdomains,tension_ratio,load_chart_ratio,warnings,full_order_steps")
+           "subdomains,tension_ratio,load_chart_ratio,warnings,full_order_steps,payload_landed,"
+           "contact_force")
 
 
 def row(s, full_order_steps):
@@ -27,7 +28,7 @@ def row(s, full_order_steps):
               v(s.jib_tip_displacement) + v(s.trolley) +
               [s.rope_top_tension, s.rope_length, s.slew_angle, s.trolley_radius, s.energy,
                s.constraint_error, s.subdomains, s.tension_ratio, s.load_chart_ratio,
-               s.warnings, full_order_steps])
+               s.warnings, full_order_steps, int(s.payload_landed), s.contact_force])
     return ",".join(repr(float(x)) if not isinstance(x, int) else str(x) for x in values)
 
 

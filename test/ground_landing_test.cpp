@@ -268,7 +268,7 @@ commands:
     const LandingRun r = run(m, 4.5);
     std::printf("%s: max penetration %.4g m, energy after the hoist stops %.6g .. end %.6g J\n",
                 model.c_str(), r.max_penetration, r.e_max_after, r.energy.back());
-    EXPECT_GT(r.max_penetration, 0.0) << model;  // it landed
+    EXPECT_GT(r.max_penetration, 0.0) << model;   // it landed
     EXPECT_EQ(r.monitor.liftOffs(), 0) << model;  // a set-down is no lift
     EXPECT_LT(r.max_penetration, 0.01) << model;
     // From 4.5 s on (hoist at rest): never above the energy at 4.5 s.
