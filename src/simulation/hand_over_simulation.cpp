@@ -13,6 +13,7 @@ void HandOverSimulation::initialize() {
   end_strain_ = m.end_mass * m.scene.gravity / m.rope.axialStiffnessAt(m.scene.rope.length);
   full_order_ = false;
   steps_ = full_order_steps_ = 0;
+  clear_of_ground_ = true;
   std::fill(hand_overs_.begin(), hand_overs_.end(), 0);
   const CoupledState f = full_.initialState();  // the rope at the scene's length
   full_.setState(f);
@@ -43,11 +44,15 @@ bool HandOverSimulation::tryHandBack() {
     if (AncfRope::minNodalStrain(f.q) < settings_.taut_strain_fraction * end_strain_ - kSlackBand)
       return false;
   }
-  if (full_.ground() && full_.ground()->clearance(f.q.segment<3>(full_.rope().positionIndex(
-                            full_.rope().nodes() - 1))) < 2.0 * kGroundMargin)
-    return false;
+  double clearance = 0.0;
+  if (full_.ground()) {
+    clearance = full_.ground()->clearance(
+        f.q.segment<3>(full_.rope().positionIndex(full_.rope().nodes() - 1)));
+    if (!carriesGround() && clearance < 2.0 * kGroundMargin) return false;
+  }
   if (!tryTakeOver(f)) return false;
   full_order_ = false;
+  clear_of_ground_ = clearance >= kGroundMargin;
   return true;
 }
 
@@ -79,10 +84,18 @@ void HandOverSimulation::step() {
     handOver(handOverState(), Cause::slack);
     return;
   }
-  if (full_.ground() &&
-      full_.ground()->clearance(reducedNode(full_.ropeNodes() - 1)) < kGroundMargin) {
-    handOver(handOverState(), Cause::ground);
-    return;
+  if (full_.ground()) {
+    // A touchdown from the air goes to full order (a landing load sliding or tipping its rope
+    // rings in shapes the basis does not hold); a rope that carries the ground stays reduced on
+    // a landed load and through its lift-off.
+    const bool clear =
+        full_.ground()->clearance(reducedNode(full_.ropeNodes() - 1)) >= kGroundMargin;
+    const bool touchdown = !clear && (clear_of_ground_ || !carriesGround());
+    clear_of_ground_ = clear;
+    if (touchdown) {
+      handOver(handOverState(), Cause::ground);
+      return;
+    }
   }
   if (errorTooLarge(steps_)) handOver(handOverState(), Cause::indicator);
 }
@@ -139,6 +152,7 @@ void HandOverSimulation::continueHandOverFrom(const HandOverSimulation& o) {
   full_since_ = o.full_since_;
   hand_back_interval_ = o.hand_back_interval_;
   hand_back_countdown_ = o.hand_back_countdown_;
+  clear_of_ground_ = o.clear_of_ground_;
 }
 
 }  // namespace crane_twin

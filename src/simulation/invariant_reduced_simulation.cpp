@@ -47,6 +47,7 @@ InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model)
   solver_ = std::make_unique<InvariantReducedSolver>(full_.rope(), *basis_, full_.support(),
                                                      integratorFor(sc), sc.time_step);
   solver_->setRopeDamping(sc.rope.damping);
+  solver_->setGround(groundContactOf(full_.model()));
 }
 
 bool InvariantReducedSimulation::startReduced(const CoupledState&) {
@@ -109,8 +110,13 @@ double InvariantReducedSimulation::errorIndicator(const CoupledState& f) const {
   const SparseMatrix& M = rope.massMatrix();
   Eigen::VectorXd Q;
   const SparseMatrix K = rope.tangentStiffness(f.q, &Q);
-  // r = F_g - M q'' - Q (the top node's rows carry lambda and are held).
-  const Eigen::VectorXd r = rope.gravityForce() - M * f.qdd - Q;
+  // r = F_g - M q'' - Q (+ the ground's force on the end node; the top node's rows carry lambda
+  // and are held).
+  Eigen::VectorXd r = rope.gravityForce() - M * f.qdd - Q;
+  if (full_.ground()) {
+    const int e = rope.positionIndex(rope.nodes() - 1);
+    r.segment<3>(e) += full_.ground()->force(f.q.segment<3>(e), f.v.segment<3>(e)).f;
+  }
   const SparseMatrix A = withoutTopPosition(K) + withoutTopPosition(M);
   if (!indicator_pattern_) {
     indicator_ldlt_.analyzePattern(A);  // the rope's pattern never changes
@@ -159,6 +165,10 @@ HandOverSimulation::Verdict InvariantReducedSimulation::reducedStep() {
     solver_->step(state_);
   } catch (const NumericalFailure&) {
     return Verdict::failed;  // state_ is at the step's start, already at the new length
+  }
+  if (solver_->ground()) {
+    const Eigen::Vector3d r = solver_->endPoint(state_.q), v = solver_->endPoint(state_.v);
+    full_.setHookResting(solver_->ground()->force(r, v).f.z() > 0.0, solver_->topTension(state_));
   }
   return Verdict::carried;
 }

@@ -115,6 +115,25 @@ Eigen::VectorXd InvariantReducedSolver::appliedForce() const {
   return F;
 }
 
+Eigen::Vector3d InvariantReducedSolver::endPoint(const Eigen::VectorXd& y) const {
+  return Eigen::Map<const Matrix3X>(y.data(), 3, m_) * psi_end_.transpose();
+}
+
+Eigen::VectorXd InvariantReducedSolver::contactForce(const Eigen::Vector3d& f) const {
+  Eigen::VectorXd Q(3 * m_);
+  for (int k = 0; k < m_; ++k) Q.segment<3>(3 * k) = -psi_end_(k) * f;
+  return Q;
+}
+
+GroundContactForce InvariantReducedSolver::contactAt(const CoupledState& x) const {
+  if (!ground_) return {};
+  if (ec_start_) {
+    return ground_->stepMeanForce(endPoint(ec_start_->q), endPoint(x.q), endPoint(ec_start_->v),
+                                  endPoint(x.v));
+  }
+  return ground_->force(endPoint(x.q), endPoint(x.v));
+}
+
 Eigen::VectorXd InvariantReducedSolver::massTimes(const Eigen::VectorXd& x) const {
   return kronTimes(Mrs_, x);
 }
@@ -267,6 +286,10 @@ bool InvariantReducedSolver::factorize(double a, double c, double k, const Eigen
       J.block<3, 3>(3 * i, 3 * j) = a * Mrs_(i, j) * Eigen::Matrix3d::Identity() +
                                     k * (Ktr(i, j) * tr + Kax(i, j) * dd) +
                                     c * damping_ * Kax(i, j) * dd;
+      // The ground at the end point: psi_i(1) psi_j(1) (k K_c + c C_c).
+      if (ground_)
+        J.block<3, 3>(3 * i, 3 * j) +=
+            psi_end_(i) * psi_end_(j) * (k * contact_K_ + c * contact_C_);
     }
   J.block<3, 3>(n, 0).setIdentity();
   J.block<3, 3>(0, n).setIdentity();
@@ -275,6 +298,8 @@ bool InvariantReducedSolver::factorize(double a, double c, double k, const Eigen
   ++factorizations_;
   factored_ = std::isfinite(lu_.rcond()) && lu_.rcond() > 1e-300;
   fact_a_ = a, fact_c_ = c, fact_k_ = k, fact_L_ = L_, fact_G_ = G, fact_d_ = d;
+  fact_contact_K_ = contact_K_;
+  fact_contact_C_ = contact_C_;
   return factored_;
 }
 
@@ -289,6 +314,7 @@ void InvariantReducedSolver::initializeAccelerations(CoupledState& s) {
   if (support_.size() > 0) rz = -support_.internalForce(s.z, s.zd, s.zdd);
   Eigen::VectorXd rhs(n + 3);
   rhs.head(n) = appliedForce() - force(s.q, s.v);
+  if (ground_) rhs.head(n) -= contactForce(ground_->force(endPoint(s.q), endPoint(s.v)).f);
   rhs.tail<3>() = condenseSupport(support_, Eigen::Vector3d::Zero(), rz, Azr);
   const Eigen::VectorXd x = lu_.solve(rhs);
   storeConsistentAccelerations(support_, x.head(n), x.tail<3>(), Azr, s);
@@ -319,7 +345,7 @@ void InvariantReducedSolver::continueSteppingOf(const InvariantReducedSolver& o)
 
 // A tension-only rope (header): the rule of integrators/tension_only_step.hpp.
 bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why) {
-  if (!rope_.element().tension_only) return generalizedAlphaStep(s, h, why);
+  if (!rope_.element().tension_only && !ground_) return generalizedAlphaStep(s, h, why);
   TensionOnlyRope rope;
   rope.generalized_alpha_step = [this](CoupledState& x, double dt, std::string& w) {
     return generalizedAlphaStep(x, dt, w);
@@ -328,7 +354,8 @@ bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why
     return energyConsistentStep(x, dt, w);
   };
   rope.switch_work_error = [this](const Eigen::VectorXd& y0, const Eigen::VectorXd& y1) {
-    return slackSwitchWorkError(y0, y1);
+    return slackSwitchWorkError(y0, y1) +
+           (ground_ ? ground_->switchWorkError(endPoint(y0), endPoint(y1)) : 0.0);
   };
   rope.energy_created = [this](const CoupledState& a, const CoupledState& b) {
     return ropeEnergyCreated(a, b);
@@ -354,9 +381,21 @@ bool InvariantReducedSolver::newton(
   const RopeIncrement increment = [&](const CoupledState& x, const NewtonWeights& w,
                                       const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
                                       Eigen::Vector3d& dmu, std::string& reason) {
+    bool contact_changed = false;
+    if (ground_) {
+      // The ground's tangent at this iterate: a touchdown, a lift-off or a change of the
+      // friction's slope refactorises.
+      const GroundContactForce cf = contactAt(x);
+      contact_K_ = -cf.df_dr;
+      contact_C_ = -cf.df_dv;
+      const double scale = std::max({contact_K_.norm(), fact_contact_K_.norm(), 1e-300});
+      const double cscale = std::max({contact_C_.norm(), fact_contact_C_.norm(), 1e-300});
+      contact_changed = (contact_K_ - fact_contact_K_).norm() > 1e-3 * scale ||
+                        (contact_C_ - fact_contact_C_).norm() > 1e-3 * cscale;
+    }
     const bool stale =
-        !factored_ || w.mass != fact_a_ || w.damping != fact_c_ || w.stiffness != fact_k_ ||
-        (w.G - fact_G_).norm() > kSupportChange * fact_G_.norm() ||
+        contact_changed || !factored_ || w.mass != fact_a_ || w.damping != fact_c_ ||
+        w.stiffness != fact_k_ || (w.G - fact_G_).norm() > kSupportChange * fact_G_.norm() ||
         std::abs(L_ - fact_L_) > kLengthChange * L_ || (chord(x.q) - fact_d_).norm() > kChordTurn ||
         (iterations == 0 && last_iterations_ >= kSlowIterations) ||
         (iterations > 0 && iterations % kSlowIterations == 0);
@@ -397,7 +436,9 @@ bool InvariantReducedSolver::newton(
 bool InvariantReducedSolver::generalizedAlphaStep(CoupledState& s, double h, std::string& why) {
   const Eigen::VectorXd applied = appliedForce();  // constant over the step
   const auto residual = [&](const CoupledState& x) -> Eigen::VectorXd {
-    return massTimes(x.qdd) + force(x.q, x.v) - applied;
+    Eigen::VectorXd r = massTimes(x.qdd) + force(x.q, x.v) - applied;
+    if (ground_) r += contactForce(ground_->force(endPoint(x.q), endPoint(x.v)).f);
+    return r;
   };
   return newton(ga_, h, residual, s, why, nullptr, nullptr);
 }
@@ -421,10 +462,11 @@ bool InvariantReducedSolver::energyConsistentStep(CoupledState& s, double h, std
   const auto residual = [&](const CoupledState& x) -> Eigen::VectorXd {
     return massTimes(x.qdd) + 2.0 * discreteGradientForce(start, x.q, x.v) - Qt0 - applied;
   };
-  if (!newton(GeneralizedAlpha::newmark(), h, residual, s, why,
-              support_.size() > 0 ? &r0z : nullptr, &start.q)) {
-    return false;
-  }
+  ec_start_ = &start;
+  const bool ok = newton(GeneralizedAlpha::newmark(), h, residual, s, why,
+                         support_.size() > 0 ? &r0z : nullptr, &start.q);
+  ec_start_ = nullptr;
+  if (!ok) return false;
   keepEnergyConsistentMeans(start, h, s);
   return true;
 }
@@ -449,6 +491,10 @@ Eigen::VectorXd InvariantReducedSolver::discreteGradientForce(const CoupledState
   const Matrix3X QA = Fa * D1_.transpose() + Fb * D2_.transpose();
   Eigen::VectorXd Q = Eigen::Map<const Eigen::VectorXd>(QA.data(), QA.size());
   if (damping_ > 0.0) Q += dampingForce(0.5 * (start.q + y1), 0.5 * (start.v + v1));
+  if (ground_) {
+    Q += contactForce(
+        ground_->stepMeanForce(endPoint(start.q), endPoint(y1), endPoint(start.v), endPoint(v1)).f);
+  }
   return Q;
 }
 
@@ -491,11 +537,18 @@ double InvariantReducedSolver::ropeEnergyCreated(const CoupledState& start,
   // ...], trapezoid in time) less the damper's dissipation at the midpoint.
   const Eigen::VectorXd F = appliedForce();
   const auto ropeEnergy = [&](const CoupledState& x) {
-    return 0.5 * x.v.dot(massTimes(x.v)) + elasticEnergy(x.q) - F.dot(x.q);
+    const double ground = ground_ ? ground_->energy(endPoint(x.q)) : 0.0;
+    return 0.5 * x.v.dot(massTimes(x.v)) + elasticEnergy(x.q) - F.dot(x.q) + ground;
   };
   const Eigen::VectorXd dq = s.q - start.q;
   double created =
       ropeEnergy(s) - ropeEnergy(start) + 0.5 * (start.lambda + s.lambda).dot(dq.head<3>());
+  if (ground_) {
+    // Less the work of the ground's damper and friction (at the midpoint, <= 0).
+    created -=
+        ground_->dissipativeForce(endPoint(0.5 * (start.q + s.q)), endPoint(0.5 * (start.v + s.v)))
+            .dot(endPoint(dq));
+  }
   if (damping_ > 0.0) {
     created += dampingForce(0.5 * (start.q + s.q), 0.5 * (start.v + s.v)).dot(dq);
   }
@@ -542,8 +595,9 @@ double InvariantReducedSolver::projectionError(const Eigen::VectorXd& q) const {
 }
 
 double InvariantReducedSolver::energy(const CoupledState& s) const {
+  const double ground = ground_ ? ground_->energy(endPoint(s.q)) : 0.0;
   return 0.5 * s.v.dot(massTimes(s.v)) + elasticEnergy(s.q) - appliedForce().dot(s.q) +
-         support_.energy(s.z, s.zd);
+         support_.energy(s.z, s.zd) + ground;
 }
 
 double InvariantReducedSolver::topTension(const CoupledState& s) const {

@@ -9,8 +9,8 @@
 //    under slack_strain_fraction of the static strain under the end mass; a reduced rope may
 //    judge slack its own way), and when its error indicator says the basis no longer carries
 //    the state (errorTooLarge);
-//    and when the payload's underside comes within kGroundMargin of the ground (the reduced
-//    ropes carry no contact: docs/model.md "Ground contact");
+//    and when the payload's underside comes down to within kGroundMargin of the ground (a
+//    touchdown; docs/model.md "Ground contact");
 //  - at full order: after hand_back_dwell of simulated time and then every hand_back_steps steps
 //    (doubling after each refused trial, up to max_hand_back_interval), a hand-back trial: the
 //    rope taut (top tension above taut_tension_fraction of the weight, every node's strain above
@@ -116,6 +116,10 @@ class HandOverSimulation : public Simulation {
   /// Default: the top tension under slack_tension_fraction of W or, every strain_check_steps
   /// steps, a point's strain under slack_strain_fraction of the end mass's static strain.
   virtual bool slackened() const;
+  /// The reduced rope carries the ground's contact itself: a landed load and its lift-off stay
+  /// reduced (a touchdown from the air still hands over). Default no: the run hands over
+  /// within kGroundMargin of the ground and hands back 2 kGroundMargin clear.
+  virtual bool carriesGround() const { return false; }
   /// Checked after every reduced step: the basis no longer carries the state (default: never).
   virtual bool errorTooLarge(long /*steps*/) { return false; }
   /// Subdomains of the run (the subdomain reduction's own count; default 1: one basis) and the
@@ -140,7 +144,8 @@ class HandOverSimulation : public Simulation {
  private:
   long full_order_steps_ = 0;
   std::array<long, static_cast<int>(Cause::ground) + 1> hand_overs_{};  ///< per Cause
-  double full_since_ = 0.0;  ///< time of the last hand-over [s]
+  double full_since_ = 0.0;      ///< time of the last hand-over [s]
+  bool clear_of_ground_ = true;  ///< the reduced payload was kGroundMargin clear at its last step
   int hand_back_interval_ = 0, hand_back_countdown_ = 0;
 };
 

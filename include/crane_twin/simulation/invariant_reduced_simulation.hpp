@@ -115,6 +115,7 @@ class InvariantReducedSimulation final : public HandOverSimulation {
   long reducedEnergyConsistentSteps() const override { return solver_->energyConsistentSteps(); }
   bool slackened() const override;
   bool errorTooLarge(long steps) override;
+  bool carriesGround() const override { return true; }
 
  private:
   void syncFullRope();

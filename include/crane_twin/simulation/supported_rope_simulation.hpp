@@ -62,6 +62,13 @@ class SupportedRopeSimulation : public Simulation {
   /// mass that holds it into *holding_force.
   CoupledState staticState(Eigen::Vector3d* holding_force = nullptr);
 
+  /// After a step: whether the payload presses on the ground, and the rope's top tension [N].
+  /// The hook rests on the landed load (rope paid out piles on it) from when the rope carries
+  /// less than its own weight and a tenth of the end mass's (kRestingLoadFraction) until the
+  /// payload leaves the ground: the rope's axial ringing after a set-down does not take it off.
+  void setHookResting(bool landed, double top_tension);
+  static constexpr double kRestingLoadFraction = 0.1;
+
  protected:
   /// Copies the model and builds its support (makeRopeSupport). Throws InputError.
   explicit SupportedRopeSimulation(const CraneModel& model);
@@ -76,12 +83,6 @@ class SupportedRopeSimulation : public Simulation {
   /// straight to it unloaded, the rest of rope.length lying on the load. Throws InputError
   /// naming rope.length where the rope cannot reach.
   CoupledState landedState();
-  /// After a step: whether the payload presses on the ground, and the rope's top tension [N].
-  /// The hook rests on the landed load (rope paid out piles on it) from when the rope carries
-  /// less than its own weight and a tenth of the end mass's (kRestingLoadFraction) until the
-  /// payload leaves the ground: the rope's axial ringing after a set-down does not take it off.
-  void setHookResting(bool landed, double top_tension);
-  static constexpr double kRestingLoadFraction = 0.1;
 
   /// Equilibrium with the chord at swing_rad from the vertical, azimuth az_rad (the solver's).
   virtual CoupledState swingEquilibrium(double swing_rad, double az_rad,

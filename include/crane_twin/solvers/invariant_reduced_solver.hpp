@@ -41,6 +41,7 @@
 #include <optional>
 #include <string>
 
+#include "crane_twin/elements/ground_contact.hpp"
 #include "crane_twin/integrators/coupled_state.hpp"
 #include "crane_twin/integrators/generalized_alpha.hpp"
 #include "crane_twin/integrators/newton_step.hpp"
@@ -71,6 +72,13 @@ class InvariantReducedSolver {
 
   /// Axial strain-rate damping c [s] (as FullOrderSolver::setRopeDamping).
   void setRopeDamping(double c);
+  /// The ground under the payload (FullOrderSolver::setGround): the end point is linear in y,
+  /// r_e = sum_k psi_k(1) a_k, so the contact's generalized force is psi_k(1) f on a_k and its
+  /// tangent psi(1) psi(1)^T (x) df/dr; a step that lands or lifts off is energy-consistent.
+  void setGround(std::optional<GroundContact> ground) { ground_ = std::move(ground); }
+  const std::optional<GroundContact>& ground() const { return ground_; }
+  /// The end point r_e (or its velocity, for y') of a reduced vector.
+  Eigen::Vector3d endPoint(const Eigen::VectorXd& y) const;
   /// Re-read the rope's length after AncfRope::setLength (hoisting: y is kept, docs/model.md).
   void refreshLength() { setLength(rope_.length()); }
   /// Set the rope length L [m] the reduced model integrates at (mass and weight in xi-units,
@@ -152,6 +160,10 @@ class InvariantReducedSolver {
   bool factorize(double a, double c, double k, const Eigen::Matrix3d& G, const Eigen::VectorXd& y,
                  const Eigen::VectorXd* y0 = nullptr);
   Eigen::Vector3d chord(const Eigen::VectorXd& y) const;
+  // -psi(1) (x) f: the ground's generalized force as an internal force (0 without ground).
+  Eigen::VectorXd contactForce(const Eigen::Vector3d& f) const;
+  // The ground's force at the state x (or the energy-consistent step's mean from ec_start_).
+  GroundContactForce contactAt(const CoupledState& x) const;
   // The projection at the current length, set up on first use after a length change.
   const InvariantRopeBasis::Projection& projection() const;
 
@@ -176,6 +188,11 @@ class InvariantReducedSolver {
   // Iteration matrix cache.
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
   bool factored_ = false;
+  std::optional<GroundContact> ground_;
+  const CoupledState* ec_start_ = nullptr;  ///< an energy-consistent step's start, while it runs
+  Eigen::Matrix3d contact_K_ = Eigen::Matrix3d::Zero(), contact_C_ = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d fact_contact_K_ = Eigen::Matrix3d::Zero(),
+                  fact_contact_C_ = Eigen::Matrix3d::Zero();
   double fact_a_ = 0, fact_c_ = 0, fact_k_ = 0, fact_L_ = 0;
   Eigen::Matrix3d fact_G_ = Eigen::Matrix3d::Zero();
   Eigen::Vector3d fact_d_ = Eigen::Vector3d::Zero();
