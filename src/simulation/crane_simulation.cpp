@@ -121,7 +121,8 @@ void CraneSimulation::stepAfterDrives() {
   applyRopeLength(state_);
   solver_->step(state_);
   if (ground_) {
-    setHookResting(solver_->groundForce(state_).z() > 0.0, solver_->topTension(state_));
+    const int e = endPointIndex();
+    setHookResting(state_.q.segment<3>(e), state_.v.segment<3>(e), solver_->topTension(state_));
   }
 }
 

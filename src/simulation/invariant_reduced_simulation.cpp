@@ -167,8 +167,8 @@ HandOverSimulation::Verdict InvariantReducedSimulation::reducedStep() {
     return Verdict::failed;  // state_ is at the step's start, already at the new length
   }
   if (solver_->ground()) {
-    const Eigen::Vector3d r = solver_->endPoint(state_.q), v = solver_->endPoint(state_.v);
-    full_.setHookResting(solver_->ground()->force(r, v).f.z() > 0.0, solver_->topTension(state_));
+    full_.setHookResting(solver_->endPoint(state_.q), solver_->endPoint(state_.v),
+                         solver_->topTension(state_));
   }
   return Verdict::carried;
 }

@@ -41,27 +41,27 @@ Eigen::VectorXd PendulumCraneSimulation::straightRope(const Eigen::Vector3d& top
   return q;
 }
 
+// What the bar's end carries with the payload landed [N]: nothing, or on a rigging the hook
+// block, half the rigging and the bar's own lower half (its length l).
+double PendulumCraneSimulation::unloadedEndLoad(double l) const {
+  if (!rigging_) return 0.0;
+  return (rope_->endMass() + 0.5 * rigging_->massPerLength() * rigging_->length() +
+          0.5 * rope_->massPerLength() * l) *
+         model_.scene.gravity;
+}
+
 // The bar's tension is uniform: with its end unloaded it is unstretched over the span (the
 // hook block on a rigging stretches it by its weight over EA / L).
 double PendulumCraneSimulation::unloadedHangingLength(double span) {
-  const double hook =
-      rigging_ ? (rope_->endMass() + 0.5 * rigging_->massPerLength() * rigging_->length() +
-                  0.5 * rope_->massPerLength() * span) *
-                     model_.scene.gravity
-               : 0.0;
-  const double L = span / (1.0 + hook / rope_->axialStiffness());
+  const double L = span / (1.0 + unloadedEndLoad(span) / rope_->axialStiffness());
   rope_->setLength(L);
   return L;
 }
 
 Eigen::VectorXd PendulumCraneSimulation::unloadedHangingRope(const Eigen::Vector3d& top,
                                                              const Eigen::Vector3d& dir) const {
-  const double hook =
-      rigging_ ? (rope_->endMass() + 0.5 * rigging_->massPerLength() * rigging_->length() +
-                  0.5 * rope_->massPerLength() * rope_->length()) *
-                     model_.scene.gravity
-               : 0.0;
-  const double l = rope_->length() * (1.0 + hook / rope_->axialStiffness());
+  const double l =
+      rope_->length() * (1.0 + unloadedEndLoad(rope_->length()) / rope_->axialStiffness());
   if (!rigging_) return PendulumRope::straight(top, dir, l);
   Eigen::VectorXd q(9);
   q << top, top + l * dir, top + (l + rigging_->length()) * dir;
@@ -81,7 +81,8 @@ void PendulumCraneSimulation::step() {
   }
   solver_->step(state_);
   if (ground_) {
-    setHookResting(solver_->groundForce(state_).z() > 0.0, solver_->topTension(state_));
+    const int e = endPointIndex();
+    setHookResting(state_.q.segment<3>(e), state_.v.segment<3>(e), solver_->topTension(state_));
   }
 }
 

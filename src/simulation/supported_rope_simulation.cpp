@@ -150,8 +150,11 @@ void SupportedRopeSimulation::continueDrivesFrom(const SupportedRopeSimulation& 
   updateWind(o.state_.t, o.state_.z, false);
 }
 
-void SupportedRopeSimulation::setHookResting(bool landed, double top_tension) {
-  if (!landed) {
+void SupportedRopeSimulation::setHookResting(const Eigen::Vector3d& payload,
+                                             const Eigen::Vector3d& payload_velocity,
+                                             double top_tension) {
+  if (!ground_) return;
+  if (!(ground_->force(payload, payload_velocity).f.z() > 0.0)) {
     hook_resting_ = false;
     return;
   }

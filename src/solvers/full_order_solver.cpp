@@ -443,12 +443,6 @@ double FullOrderSolver::energy(const CoupledState& s) const {
   return mechanicalEnergy(rope_, support_, s) + ground;
 }
 
-Eigen::Vector3d FullOrderSolver::groundForce(const CoupledState& s) const {
-  if (!ground_) return Eigen::Vector3d::Zero();
-  const int e = rope_.positionIndex(rope_.nodes() - 1);
-  return ground_->force(s.q.segment<3>(e), s.v.segment<3>(e)).f;
-}
-
 double FullOrderSolver::topTension(const CoupledState& s) const { return ropeTopTension(rope_, s); }
 
 double FullOrderSolver::constraintError(const CoupledState& s) const {

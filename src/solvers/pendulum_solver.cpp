@@ -208,11 +208,6 @@ double PendulumSolver::energy(const CoupledState& s) const {
          support_.energy(s.z, s.zd);
 }
 
-Eigen::Vector3d PendulumSolver::groundForce(const CoupledState& s) const {
-  if (!ground_) return Eigen::Vector3d::Zero();
-  return ground_->force(s.q.tail<3>(), s.v.tail<3>()).f;
-}
-
 double PendulumSolver::topTension(const CoupledState& s) const {
   return ropeTopTension(s.lambda, rope_.topMass(), s.qdd.head<3>(), rope_.gravity());
 }

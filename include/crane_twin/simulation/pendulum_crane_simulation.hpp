@@ -65,6 +65,8 @@ class PendulumCraneSimulation final : public SupportedRopeSimulation {
   }
 
  private:
+  // The load on the bar's end with the payload landed [N] (the bar of length l).
+  double unloadedEndLoad(double l) const;
   std::unique_ptr<PendulumRope> rope_;
   std::unique_ptr<PendulumRope> rigging_;  ///< hook block to payload (hook.rigging_length > 0)
   std::unique_ptr<PendulumSolver> solver_;

@@ -62,11 +62,14 @@ class SupportedRopeSimulation : public Simulation {
   /// mass that holds it into *holding_force.
   CoupledState staticState(Eigen::Vector3d* holding_force = nullptr);
 
-  /// After a step: whether the payload presses on the ground, and the rope's top tension [N].
-  /// The hook rests on the landed load (rope paid out piles on it) from when the rope carries
-  /// less than its own weight and a tenth of the end mass's (kRestingLoadFraction) until the
+  /// After a step: the payload's position and velocity [m, m/s] and the rope's top tension [N].
+  /// The hook rests on the landed load (rope paid out piles on it) from when the payload presses
+  /// on the ground (the contact force of the output's `payload_landed`) and the rope carries
+  /// less than its own weight and a tenth of the end mass's (kRestingLoadFraction), until the
   /// payload leaves the ground: the rope's axial ringing after a set-down does not take it off.
-  void setHookResting(bool landed, double top_tension);
+  /// No effect without `ground:`.
+  void setHookResting(const Eigen::Vector3d& payload, const Eigen::Vector3d& payload_velocity,
+                      double top_tension);
   static constexpr double kRestingLoadFraction = 0.1;
 
  protected:

@@ -92,8 +92,6 @@ class FullOrderSolver {
   /// tension-only rule then runs for a symmetric rope too). Empty: no ground.
   void setGround(std::optional<GroundContact> ground) { ground_ = std::move(ground); }
   const std::optional<GroundContact>& ground() const { return ground_; }
-  /// The ground's force on the payload at a state (zero without ground) [N].
-  Eigen::Vector3d groundForce(const CoupledState& s) const;
   /// Half steps taken so far in place of failed steps (0 in a smooth run).
   long halvedSteps() const { return halved_steps_; }
   /// Energy-consistent steps taken so far (slack/taut switches; 0 for a rope that stays taut).

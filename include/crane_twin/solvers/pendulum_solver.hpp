@@ -54,8 +54,6 @@ class PendulumSolver {
   /// The ground under the end point (the payload; docs/model.md "Ground contact"), its force
   /// with the damping forces, its energy in energy(). Empty: no ground.
   void setGround(std::optional<GroundContact> ground) { ground_ = std::move(ground); }
-  /// The ground's force on the payload at a state (zero without ground) [N].
-  Eigen::Vector3d groundForce(const CoupledState& s) const;
   static constexpr int kMaxHalvings = 6;
   long halvedSteps() const { return halved_steps_; }
   double timeStep() const { return h_; }
