@@ -463,6 +463,7 @@ void CraneSimNode::publish() {
   recorder_->published(marker_pub_);
   last_state_ = toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model, frames_);
   last_state_.t += t_offset_;
+  last_state_.payload_mass_estimate = model_.scene.payload_mass;
   last_state_.lift_offs = lift_off_.liftOffs();
   last_state_.lift_off_factor = lift_off_.factor();
   state_pub_.publish(last_state_);
