@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -78,20 +79,35 @@ TEST(TwinRuntime, AnAcceptedMeasurementPullsTheTwinTowardItAndAFarOneIsRefused) 
   EXPECT_LT((r.sim->series().payload - before).norm(), 0.05);
 }
 
-TEST(TwinRuntime, TheTensionFilterFindsTheLoadTheRopeCarries) {
-  // A rope carrying 20 % more than the twin's: the ratio and the implied payload mass.
+TEST(TwinRuntime, TheTensionFilterAndTheLoadCellFindTheLoadTheRopeCarries) {
+  // A rope whose end carries 20 % more than the twin's, hanging from the start, the measured
+  // tension U + 1.2 (T - U) with U = mu L g the rope's weight: the filtered ratio, and after one
+  // 5 s window the end mass 1.2 m_e, offered once.
   TwinRun r({});
   r.step();
   EXPECT_FALSE(r.runtime.tensionSeen());
   EXPECT_DOUBLE_EQ(r.runtime.tensionRatio(), 1.0);
-  for (int k = 0; k < 50; ++k) {
-    r.runtime.addTension(1.2 * r.sim->series().rope_top_tension);
+  EXPECT_DOUBLE_EQ(r.runtime.payloadMassEstimate(), r.model.scene.payload_mass);
+  std::optional<double> offered;
+  while (r.sim->time() < 6.0) {
+    const SeriesValues v = r.sim->series();
+    const double u = r.model.rope.mass_per_length * v.rope_length * r.model.scene.gravity;
+    r.runtime.addTension(u + 1.2 * (v.rope_top_tension - u));
     r.step();
+    if (const std::optional<double> m = r.runtime.takePayloadMass()) {
+      EXPECT_FALSE(offered.has_value()) << "offered twice";
+      offered = m;
+    }
   }
   ASSERT_TRUE(r.runtime.tensionSeen());
-  EXPECT_NEAR(r.runtime.tensionRatio(), 1.2, 0.01);
-  const double expected = 1.2 * r.model.hangingPointMass() - r.model.scene.hookBlockMass();
-  EXPECT_NEAR(r.runtime.payloadMassEstimate(), expected, 0.01 * expected);
+  const double ratio = 1.0 + 0.2 * (1.0 - r.model.ropeMass() * r.model.scene.gravity /
+                                              r.sim->series().rope_top_tension);
+  EXPECT_NEAR(r.runtime.tensionRatio(), ratio, 0.01);
+  const double expected = 1.2 * r.model.end_mass - r.model.scene.hookBlockMass();
+  EXPECT_NEAR(r.runtime.payloadMassEstimate(), expected, 0.005 * expected);
+  ASSERT_TRUE(offered.has_value());
+  EXPECT_NEAR(*offered, expected, 0.005 * expected);
+  EXPECT_FALSE(r.runtime.loadCell().landed());
 }
 
 TEST(TwinRuntime, JointSamplesReachTheFollowerAndABadOneIsRefused) {

@@ -1,6 +1,8 @@
 #include "crane_twin/simulation/crane_model.hpp"
 
 #include <Eigen/SparseCholesky>
+#include <cmath>
+#include <string>
 
 #include "crane_twin/io/input_error.hpp"
 #include "crane_twin/structure/geometric_stiffness.hpp"
@@ -28,11 +30,9 @@ void addGeometricStiffness(CraneModel& m) {
   }
 }
 
-CraneModel buildCraneModel(const Scene& scene) {
-  CraneModel m;
-  m.scene = scene;
-  // Even a rigid structure needs the geometry (rail, jib tip, cab reference points).
-  if (scene.crane) m.structure = TowerCraneStructure::build(*scene.crane);
+// The rope and the masses at its end from m.scene (docs/model.md "Reeving", "Hook block").
+void setRopeAndLoad(CraneModel& m) {
+  const Scene& scene = m.scene;
   const int n = scene.rope.falls;
   m.rope.mass_per_length = n * scene.rope.mass_per_length;
   m.rope.axial_stiffness = n * scene.rope.axial_stiffness;
@@ -41,8 +41,66 @@ CraneModel buildCraneModel(const Scene& scene) {
   m.rope.reeving_equivalent_length = scene.rope.reeving_length / n;
   m.end_mass = scene.payload_mass + (scene.hasRigging() ? 0.0 : scene.hookBlockMass());
   m.hook_mass = scene.hasRigging() ? scene.hookBlockMass() : 0.0;
+}
+
+CraneModel buildCraneModel(const Scene& scene) {
+  CraneModel m;
+  m.scene = scene;
+  // Even a rigid structure needs the geometry (rail, jib tip, cab reference points).
+  if (scene.crane) m.structure = TowerCraneStructure::build(*scene.crane);
+  setRopeAndLoad(m);
   if (scene.structure_geometric_stiffness) addGeometricStiffness(m);
   return m;
+}
+
+CraneModel withScene(const CraneModel& model, const Scene& scene) {
+  const Scene& o = model.scene;
+  auto refuse = [&scene](const std::string& key, const std::string& what) {
+    throw InputError(scene.file + ": key '" + key + "': " + what +
+                     " differs from the running model's (a new model is built from the file)");
+  };
+  if (scene.crane_name != o.crane_name || scene.crane.has_value() != o.crane.has_value()) {
+    refuse("crane", "the crane");
+  }
+  if (scene.structure_model != o.structure_model || scene.structure_modes != o.structure_modes ||
+      scene.structure_geometric_stiffness != o.structure_geometric_stiffness) {
+    refuse("structure", "the structure model");
+  }
+  const RopeSettings &r = scene.rope, &q = o.rope;
+  if (r.model != q.model || r.elements != q.elements || r.falls != q.falls ||
+      r.mass_per_length != q.mass_per_length || r.axial_stiffness != q.axial_stiffness ||
+      r.bending != q.bending || r.bending_stiffness != q.bending_stiffness ||
+      r.reeving_length != q.reeving_length || scene.hasRigging() != o.hasRigging()) {
+    refuse("rope", "the rope's discretisation or section");
+  }
+  CraneModel m = model;
+  m.scene = scene;
+  setRopeAndLoad(m);
+  if (scene.structure_geometric_stiffness) {
+    TowerCraneStructure& st = *m.structure;
+    st.K = st.K - geometricStiffness(st, model.structure_axial_forces);
+    addGeometricStiffness(m);
+  }
+  return m;
+}
+
+CraneModel withPayloadMass(const CraneModel& model, double payload_mass) {
+  const Scene& o = model.scene;
+  auto refuse = [&o](const std::string& what) {
+    throw InputError(o.file + ": key 'payload.mass': " + what);
+  };
+  if (!std::isfinite(payload_mass) || payload_mass < 0.0) {
+    refuse("must be a finite mass >= 0 [kg], got " + std::to_string(payload_mass));
+  }
+  if (o.hasRigging() && !(payload_mass > 0.0)) {
+    refuse("must be > 0 under a rigging (hook.rigging_length carries the payload)");
+  }
+  if (o.ground && !(payload_mass + o.hookBlockMass() > 0.0)) {
+    refuse("must be > 0 with ground: and no hook block (something must land)");
+  }
+  Scene s = o;
+  s.payload_mass = payload_mass;
+  return withScene(model, s);
 }
 
 GeneralizedAlpha integratorFor(const Scene& sc) {

@@ -86,8 +86,8 @@ void CraneSimulation::continueFrom(const Simulation& other) {
     rope_->setLength(o->rope_->length());
     solver_->refreshMass();
   }
-  // The generalized-alpha variables belong to a time step: with another step, restart.
-  if (o->solver_->timeStep() == solver_->timeStep()) {
+  // The generalized-alpha variables belong to a time step and a load: with another, restart.
+  if (o->solver_->timeStep() == solver_->timeStep() && carriesTheLoadOf(*o)) {
     state_ = o->state_;
     solver_->continueSteppingOf(*o->solver_);
   } else {

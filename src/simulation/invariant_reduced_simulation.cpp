@@ -70,7 +70,8 @@ void InvariantReducedSimulation::continueFrom(const Simulation& other) {
   if (o->solver_->length() != solver_->length()) solver_->setLength(o->solver_->length());
   state_ = o->state_;
   solver_->continueSteppingOf(*o->solver_);
-  if (o->full_.model().scene.time_step != full_.model().scene.time_step) {
+  if (o->full_.model().scene.time_step != full_.model().scene.time_step ||
+      !full_.carriesTheLoadOf(o->full_)) {
     solver_->initializeAccelerations(state_);
   }
 }

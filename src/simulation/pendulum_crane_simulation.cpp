@@ -95,8 +95,10 @@ void PendulumCraneSimulation::continueFrom(const Simulation& other) {
   continueDrivesFrom(*o);
   rope_->setLength(o->rope_->length());
   state_ = o->state_;
-  // The generalized-alpha variables belong to a time step: with another step, restart.
-  if (o->solver_->timeStep() != solver_->timeStep()) solver_->initializeAccelerations(state_);
+  // The generalized-alpha variables belong to a time step and a load: with another, restart.
+  if (o->solver_->timeStep() != solver_->timeStep() || !carriesTheLoadOf(*o)) {
+    solver_->initializeAccelerations(state_);
+  }
 }
 
 std::vector<Eigen::Vector3d> PendulumCraneSimulation::ropeCurve(int per_element) const {

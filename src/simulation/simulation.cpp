@@ -137,4 +137,11 @@ std::unique_ptr<Simulation> makeSimulation(const CraneModel& model) {
   return std::make_unique<PendulumCraneSimulation>(model);
 }
 
+std::unique_ptr<Simulation> continueWithModel(const CraneModel& model, const Simulation& from) {
+  std::unique_ptr<Simulation> sim = makeSimulation(model);
+  sim->initialize();
+  sim->continueFrom(from);
+  return sim;
+}
+
 }  // namespace crane_twin

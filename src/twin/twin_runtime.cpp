@@ -1,23 +1,35 @@
 #include "crane_twin/twin/twin_runtime.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
+#include "crane_twin/drives/crane_drives.hpp"
 #include "crane_twin/twin/sway_correction.hpp"
 
 namespace crane_twin {
 
 TwinRuntime::TwinRuntime(const SwayEstimatorSettings& estimator,
-                         const JointFollowerSettings& follower)
-    : estimator_settings_(estimator), follower_(follower) {
+                         const JointFollowerSettings& follower, const LoadCellSettings& load_cell)
+    : estimator_settings_(estimator),
+      follower_(follower),
+      load_cell_settings_(load_cell),
+      load_cell_(load_cell) {
   estimator_settings_.check();
 }
 
-void TwinRuntime::restart(const CraneModel& model, const Simulation& sim) {
+void TwinRuntime::loadChanged(const CraneModel& model) {
   crane_ = model.scene.crane ? &*model.scene.crane : nullptr;
-  end_mass_ = model.hangingPointMass();
+  end_mass_ = model.end_mass;
   hook_mass_ = model.scene.hookBlockMass();
+  rigging_ = model.scene.hasRigging();
+  rope_mass_per_length_ = model.rope.mass_per_length;
   gravity_ = model.scene.gravity;
+}
+
+void TwinRuntime::restart(const CraneModel& model, const Simulation& sim) {
+  loadChanged(model);
+  load_cell_ = LoadCellMonitor(load_cell_settings_);
   follower_.clear();
   modes_ = swayCouplingModes(sim);
   estimator_ = std::make_unique<SwayEstimator>(estimator_settings_, modeMotionNorms(sim, modes_));
@@ -80,15 +92,41 @@ void TwinRuntime::afterStep(Simulation& sim, double h,
     }
   }
   if (!tension_in_.empty()) {
-    const double twin_tension = sim.series().rope_top_tension;
+    const SeriesValues v = sim.series();
+    const double twin_tension = v.rope_top_tension;
+    LoadCellSample sample;
+    sample.t = now;
+    sample.twin = twin_tension;
+    // The masses that never land: the hanging rope and a hook block on a rigging.
+    sample.unloaded =
+        (rope_mass_per_length_ * v.rope_length + (rigging_ ? hook_mass_ : 0.0)) * gravity_;
+    sample.end_mass = end_mass_;
+    sample.gravity = gravity_;
+    sample.twin_landed = v.payload_landed;
+    sample.hoist_length = sim.drives().hoistLength();
     while (!tension_in_.empty()) {
       const double r = twin_tension > 0.0 ? tension_in_.front() / twin_tension : 1.0;
+      sample.measured = tension_in_.front();
+      if (end_mass_ > 0.0) load_cell_.add(sample);
       tension_in_.pop_front();
       // Exponential filter over about 10 measurements.
       tension_ratio_ = tension_seen_ ? tension_ratio_ + 0.1 * (r - tension_ratio_) : r;
       tension_seen_ = true;
     }
   }
+}
+
+double TwinRuntime::payloadMassEstimate() const {
+  const double e = load_cell_.endMassEstimate();
+  return (std::isnan(e) ? end_mass_ : e) - (rigging_ ? 0.0 : hook_mass_);
+}
+
+std::optional<double> TwinRuntime::takePayloadMass() {
+  const std::optional<double> e = load_cell_.takeEndMass();
+  if (!e) return std::nullopt;
+  // The hook block stays what the crane file says; a load cell reading below it leaves no
+  // payload.
+  return std::max(*e - (rigging_ ? 0.0 : hook_mass_), 0.0);
 }
 
 }  // namespace crane_twin

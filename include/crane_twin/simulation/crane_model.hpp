@@ -63,6 +63,21 @@ struct CraneModel {
 
 CraneModel buildCraneModel(const Scene& scene);
 
+/// The model of `scene`, which differs from model.scene only in its load, pose, initial state
+/// and commands (payload.mass, trolley.radius, slewing.angle, rope.length, initial.*,
+/// commands): the structure's matrices are reused, not rebuilt, and with
+/// structure.geometric_stiffness K_G is recomputed for the new hanging load
+/// (K + K_G(N_new) = (K + K_G(N_old)) - K_G(N_old) + K_G(N_new), K_G linear in N).
+/// Throws InputError naming the key for another crane, structure or rope discretisation, and
+/// what buildCraneModel refuses.
+CraneModel withScene(const CraneModel& model, const Scene& scene);
+
+/// The model with another payload mass [kg] (a load picked up, or the twin's estimate of it;
+/// docs/twin.md "Picks and set-downs"), everything else kept, payload.height included.
+/// Throws InputError naming payload.mass for a mass that is not finite and >= 0, 0 under a
+/// rigging, or no load at all with `ground:`.
+CraneModel withPayloadMass(const CraneModel& model, double payload_mass);
+
 /// The scene's ground under the payload (docs/model.md "Ground contact"): `ground:`'s height,
 /// stiffness and friction, the payload's height (payload.height), and the damper
 /// c = 2 zeta sqrt(k m) for the mass that lands, m = end_mass (payload and hook block, or the

@@ -153,4 +153,11 @@ int integratedRopeCoordinates(const CraneModel& model);
 /// rope.reduction: subdomains, PendulumCraneSimulation for pendulum). Throws InputError.
 std::unique_ptr<Simulation> makeSimulation(const CraneModel& model);
 
+/// A simulation of `model` that continues `from` (Simulation::continueFrom): its state, drives
+/// and time, now with model's loads. For a load that changes in a running twin
+/// (withPayloadMass; docs/twin.md "Picks and set-downs"): the rope, stretched for the old load,
+/// takes the new one from this step on. Throws InputError where `from`'s model cannot continue
+/// (the subdomain reduced rope; another rope model or discretisation).
+std::unique_ptr<Simulation> continueWithModel(const CraneModel& model, const Simulation& from);
+
 }  // namespace crane_twin

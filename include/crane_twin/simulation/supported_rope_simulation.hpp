@@ -71,6 +71,11 @@ class SupportedRopeSimulation : public Simulation {
   void setHookResting(const Eigen::Vector3d& payload, const Eigen::Vector3d& payload_velocity,
                       double top_tension);
   static constexpr double kRestingLoadFraction = 0.1;
+  /// The same point masses hang on the rope as in `other` (continueFrom restarts the
+  /// generalized-alpha accelerations when they differ: a load changed, withPayloadMass).
+  bool carriesTheLoadOf(const SupportedRopeSimulation& other) const {
+    return model_.end_mass == other.model_.end_mass && model_.hook_mass == other.model_.hook_mass;
+  }
 
  protected:
   /// Copies the model and builds its support (makeRopeSupport). Throws InputError.

@@ -3,13 +3,17 @@
 // go through the sway estimator (the twin's payload taken back to that time,
 // p(t - age) = p - v age, age at most 1 s) and, where the innovation gate accepts them, into the
 // simulation as a correction of its sway; the measured rope tension's ratio to the twin's is
-// filtered exponentially over about 10 measurements (r <- r + 0.1 (r_measured - r)). The ROS
-// node converts messages into these calls (src/ros/twin_adapter.cpp).
+// filtered exponentially over about 10 measurements (r <- r + 0.1 (r_measured - r)), and goes
+// with the twin's state to the load cell monitor, which sees lift-offs and set-downs and
+// estimates the lifted load's mass (LoadCellMonitor; the caller changes the twin's load with
+// takePayloadMass, withPayloadMass and continueWithModel). The ROS node converts messages into
+// these calls (src/ros/twin_adapter.cpp).
 #pragma once
 
 #include <deque>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,6 +21,7 @@
 #include "crane_twin/drives/measured_joint_follower.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/simulation/simulation.hpp"
+#include "crane_twin/twin/load_cell_monitor.hpp"
 #include "crane_twin/twin/sway_estimator.hpp"
 
 namespace crane_twin {
@@ -25,12 +30,16 @@ class TwinRuntime {
  public:
   /// Throws std::invalid_argument for estimator settings that SwayEstimatorSettings::check
   /// refuses.
-  TwinRuntime(const SwayEstimatorSettings& estimator, const JointFollowerSettings& follower);
+  TwinRuntime(const SwayEstimatorSettings& estimator, const JointFollowerSettings& follower,
+              const LoadCellSettings& load_cell = LoadCellSettings());
 
   /// A new simulation `sim` of `model` started (reset, new load): the follower cleared, the
   /// estimator back to its prior with the structure modes that couple to the sway at the start,
   /// queues and filters emptied.
   void restart(const CraneModel& model, const Simulation& sim);
+  /// The twin's load changed in a running simulation (withPayloadMass): the masses the tension
+  /// is read against follow; the estimator, the follower and the load cell's state stay.
+  void loadChanged(const CraneModel& model);
 
   /// A measured joint sample (twin time, slew / trolley / hoist); "" or why it was refused.
   std::string addJoints(const JointSample& sample);
@@ -62,15 +71,24 @@ class TwinRuntime {
   /// The filtered measured / twin top tension (1 until a tension arrives).
   double tensionRatio() const { return tension_ratio_; }
   bool tensionSeen() const { return tension_seen_; }
-  /// The payload mass the filtered tension implies: ratio x the hanging point mass less the
-  /// hook block [kg].
-  double payloadMassEstimate() const { return tension_ratio_ * end_mass_ - hook_mass_; }
+  /// The payload mass the load cell found in its last window after a lift-off, or the twin's
+  /// own until one [kg].
+  double payloadMassEstimate() const;
+  /// A payload mass [kg] the twin should take (the load cell found the lifted load's more than
+  /// 1 % off the twin's), once; empty otherwise.
+  std::optional<double> takePayloadMass();
+  const LoadCellMonitor& loadCell() const { return load_cell_; }
 
  private:
   SwayEstimatorSettings estimator_settings_;
   MeasuredJointFollower follower_;
   const CraneDescription* crane_ = nullptr;  ///< of the current model (none: crane: none)
-  double end_mass_ = 0.0, hook_mass_ = 0.0, gravity_ = 9.81;
+  LoadCellSettings load_cell_settings_;
+  LoadCellMonitor load_cell_;
+  /// The model's end mass, hook block (kg: part of the end mass without a rigging), rope mass
+  /// per metre and whether a rigging hangs under the hook.
+  double end_mass_ = 0.0, hook_mass_ = 0.0, rope_mass_per_length_ = 0.0, gravity_ = 9.81;
+  bool rigging_ = false;
   std::vector<int> modes_;
   std::unique_ptr<SwayEstimator> estimator_;
   std::deque<std::pair<double, Eigen::Vector3d>> payload_in_;  ///< twin time, base frame
