@@ -337,25 +337,21 @@ bool CraneSimNode::onSetPayload(SetPayload::Request& req, SetPayload::Response& 
     res.message = "stop the drives first: a load is picked up at rest";
     return true;
   }
-  // The new load hangs in static equilibrium where the crane stands (docs/ros.md).
-  std::vector<std::string> o = settings_.overrides;
-  auto set = [&o](const char* key, double value) {
-    std::ostringstream v;
-    v.precision(17);
-    v << key << '=' << value;
-    o.push_back(v.str());
-  };
-  set("payload.mass", req.mass);
-  if (model_.scene.crane) {
-    set("slewing.angle", d.slewAngle());
-    set("trolley.radius", d.trolleyRadius());
-    set("rope.length", d.hoistLength());
-  }
-  for (const char* s : {"initial.mode=equilibrium", "initial.swing_deg=0",
-                        "initial.payload_velocity=[0, 0, 0]", "commands=[]"})
-    o.push_back(s);
+  // The new load hangs in static equilibrium where the crane stands (docs/ros.md): the same
+  // model with another load, pose and initial state, its structure not rebuilt (withScene).
   try {
-    CraneModel m = buildCraneModel(loadScene(settings_.scene, o));
+    CraneModel m = withPayloadMass(model_, req.mass);
+    Scene s = m.scene;
+    if (s.crane) {
+      s.slew_angle = d.slewAngle();
+      s.trolley_radius = d.trolleyRadius();
+      s.rope.length = d.hoistLength();
+    }
+    s.initial_mode = "equilibrium";
+    s.swing_deg = 0.0;
+    s.payload_velocity = Eigen::Vector3d::Zero();
+    s.commands.clear();
+    m = withScene(m, s);
     const double t = t_offset_ + sim_->time();
     model_ = std::move(m);
     t_offset_ = t;
@@ -370,6 +366,21 @@ bool CraneSimNode::onSetPayload(SetPayload::Request& req, SetPayload::Response& 
                 " kg, in equilibrium at t = " + std::to_string(t_offset_) + " s";
   publishNow();
   return true;
+}
+
+void CraneSimNode::takeMeasuredPayload(double mass) {
+  try {
+    CraneModel m = withPayloadMass(model_, mass);
+    std::unique_ptr<Simulation> next = continueWithModel(m, *sim_);
+    const double from = model_.scene.payload_mass;
+    model_ = std::move(m);
+    sim_ = std::move(next);
+    twin_->loadChanged(model_);
+    ROS_INFO("crane_sim_node (twin): the load cell finds %.0f kg lifted (was %.0f kg) at t = %g s",
+             mass, from, t_offset_ + sim_->time());
+  } catch (const std::exception& e) {  // a model that cannot continue with another load
+    warnThrottled(std::string("the load cell's payload mass not taken: ") + e.what());
+  }
 }
 
 bool CraneSimNode::onPause(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {
@@ -406,6 +417,7 @@ bool CraneSimNode::stepOnce() {
     twin_->afterStep(*sim_, model_.scene.time_step, [this](const ros::Time& s) {
       return (s - stamp_origin_).toSec() - t_offset_;
     });
+    if (const std::optional<double> m = twin_->takePayloadMass()) takeMeasuredPayload(*m);
   } catch (const std::exception& e) {  // NumericalFailure, or anything the model refuses
     failed_ = true;
     std::ostringstream s;
@@ -464,6 +476,10 @@ void CraneSimNode::publish() {
   last_state_ = toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model, frames_);
   last_state_.t += t_offset_;
   last_state_.payload_mass_estimate = model_.scene.payload_mass;
+  // A twin reading a load cell: landed as the load cell sees it (docs/twin.md).
+  if (const std::optional<bool> landed = twin_->loadCellLanded()) {
+    last_state_.payload_landed = *landed;
+  }
   last_state_.lift_offs = lift_off_.liftOffs();
   last_state_.lift_off_factor = lift_off_.factor();
   state_pub_.publish(last_state_);

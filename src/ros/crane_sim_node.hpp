@@ -85,6 +85,9 @@ class CraneSimNode {
   bool onSetPayload(SetPayload::Request& req, SetPayload::Response& res);
   /// A new simulation of model_ from t_offset_ on, keeping the stamps' origin.
   void restartSimulation();
+  /// The twin takes the payload mass its load cell found: the running simulation continues
+  /// with it (withPayloadMass, continueWithModel; docs/twin.md "Picks and set-downs").
+  void takeMeasuredPayload(double mass);
   std::unique_ptr<TwinAdapter> twin_;
   /// What the forecast assumes the drives are asked: the measured rates, the trajectory being
   /// followed, or the operator's command held.

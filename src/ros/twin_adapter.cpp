@@ -3,6 +3,7 @@
 #include <geometry_msgs/PoseWithCovarianceStamped.h>
 #include <nav_msgs/Path.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <sstream>
@@ -71,21 +72,33 @@ void TwinAdapter::restart(const CraneModel& model, const Simulation& sim) {
   runtime_.restart(model, sim);
   joints_in_.clear();
   payload_in_.clear();
-  if (forecast_job_.valid()) forecast_job_.wait();  // it runs on the old forecaster
+  rebuildForecaster(model);
+  if (settings_.measured_input && !crane_) {
+    throw InputError("parameter '~input' 'measured' needs a scene with a crane");
+  }
+}
+
+void TwinAdapter::loadChanged(const CraneModel& model) {
+  crane_ = model.scene.crane ? &*model.scene.crane : nullptr;
+  runtime_.loadChanged(model);
+  rebuildForecaster(model);
+}
+
+void TwinAdapter::rebuildForecaster(const CraneModel& model) {
+  // A running forecast keeps the old forecaster (its job holds it) and finishes on its own.
+  dropFinishedRetiredJobs();
+  if (forecast_job_.valid()) retired_jobs_.push_back(std::move(forecast_job_));
   forecast_job_ = {};
   last_forecast_ = PayloadForecast{};
   forecaster_.reset();
   forecast_error_.clear();
   if (settings_.forecast_rate > 0.0) {
     try {
-      forecaster_ = std::make_unique<PayloadForecaster>(model, settings_.forecast_time_step);
+      forecaster_ = std::make_shared<PayloadForecaster>(model, settings_.forecast_time_step);
     } catch (const InputError& e) {  // a rope model that cannot continue another run's state
       forecast_error_ = std::string("no forecast: ") + e.what();
       ROS_WARN("crane_sim_node (twin): %s", forecast_error_.c_str());
     }
-  }
-  if (settings_.measured_input && !crane_) {
-    throw InputError("parameter '~input' 'measured' needs a scene with a crane");
   }
 }
 
@@ -209,6 +222,7 @@ void TwinAdapter::publish(const Simulation& sim, const ros::Time& stamp,
   e.pose.covariance[21] = e.pose.covariance[28] = e.pose.covariance[35] = 1e6;
   estimate_pub_.publish(e);
 
+  dropFinishedRetiredJobs();
   if (!forecaster_) return;
   if (forecast_job_.valid()) {
     if (forecast_job_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return;
@@ -226,11 +240,20 @@ void TwinAdapter::publish(const Simulation& sim, const ros::Time& stamp,
     forecast_error_ = ex.what();
     return warn(std::string("forecast failed: ") + ex.what());
   }
-  PayloadForecaster* f = forecaster_.get();
+  std::shared_ptr<PayloadForecaster> f = forecaster_;
   const double horizon = settings_.forecast_horizon, period = settings_.forecast_sample_period;
   forecast_job_ = std::async(std::launch::async, [f, forecast_command, horizon, period]() {
     return f->runPrepared(forecast_command, horizon, period);
   });
+}
+
+void TwinAdapter::dropFinishedRetiredJobs() {
+  retired_jobs_.erase(std::remove_if(retired_jobs_.begin(), retired_jobs_.end(),
+                                     [](std::future<PayloadForecast>& j) {
+                                       return j.wait_for(std::chrono::seconds(0)) ==
+                                              std::future_status::ready;
+                                     }),
+                      retired_jobs_.end());
 }
 
 void TwinAdapter::collectForecast(const std::function<ros::Time(double)>& stamp_of) {
@@ -286,11 +309,15 @@ void TwinAdapter::diagnose(const Simulation& sim, diagnostic_msgs::DiagnosticSta
   addNumber(d, "normalized_innovation", runtime_.lastUpdate().normalized);
   addNumber(d, "payload_updates", static_cast<double>(runtime_.payloadUpdates()));
   addNumber(d, "payload_measurements_refused", static_cast<double>(runtime_.payloadRefused()));
+  addNumber(d, "payload_measurements_on_ground", static_cast<double>(runtime_.payloadOnGround()));
   addNumber(d, "sway_corrections_failed", static_cast<double>(runtime_.correctionFailures()));
   if (runtime_.tensionSeen()) {
     addNumber(d, "tension_ratio_measured_to_twin", runtime_.tensionRatio());
-    // The hanging mass the measured tension implies, less the hook block.
+    // The load cell's last window after a lift-off (docs/twin.md "Picks and set-downs").
     addNumber(d, "payload_mass_estimate_kg", runtime_.payloadMassEstimate());
+    addKeyValue(d, "load_cell", runtime_.loadCell().landed() ? "landed" : "hanging");
+    addNumber(d, "load_cell_lifts", runtime_.loadCell().lifts());
+    addNumber(d, "load_cell_set_downs", runtime_.loadCell().setDowns());
     if (std::abs(runtime_.tensionRatio() - 1.0) > 0.05) {
       warn_level("measured tension differs from the twin's by more than 5 % (~set_payload?)");
     }

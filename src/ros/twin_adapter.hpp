@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "crane_twin/drives/measured_joint_follower.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
@@ -52,6 +53,20 @@ class TwinAdapter {
   /// prior with the structure modes it sees at the start, the forecaster rebuilt for the model.
   /// Throws InputError for a forecast the model cannot run.
   void restart(const CraneModel& model, const Simulation& sim);
+  /// The twin's load changed in the running simulation (the load cell found the lifted mass):
+  /// the runtime reads tensions against it and the forecaster is rebuilt for it.
+  void loadChanged(const CraneModel& model);
+  /// A payload mass [kg] the load cell found for the lifted load, once (TwinRuntime); only a
+  /// twin that follows the measured joints (~input: measured) takes it.
+  std::optional<double> takePayloadMass() {
+    const std::optional<double> m = runtime_.takePayloadMass();
+    return settings_.measured_input ? m : std::nullopt;
+  }
+  /// Landed as the load cell sees it (empty before a measured tension arrived).
+  std::optional<bool> loadCellLanded() const {
+    if (!runtime_.loadCell().started()) return std::nullopt;
+    return runtime_.loadCell().landed();
+  }
   bool measuredInput() const { return settings_.measured_input; }
   /// The rate command that follows the measured joints (measured input), at twin time t.
   CommandEntry followCommand(const Simulation& sim) const;
@@ -83,8 +98,12 @@ class TwinAdapter {
   double base_yaw_ = 0.0;
   const CraneDescription* crane_ = nullptr;  ///< of the current model (none: crane: none)
   TwinRuntime runtime_;  ///< the follower, the estimator and the filters (ROS-free)
-  std::unique_ptr<PayloadForecaster> forecaster_;
+  /// Shared with the forecast job that runs on it (a rebuilt forecaster leaves the old one to
+  /// its job).
+  std::shared_ptr<PayloadForecaster> forecaster_;
   std::string forecast_error_;
+  /// The forecaster for `model` (none with ~forecast_rate 0, or a model that cannot forecast).
+  void rebuildForecaster(const CraneModel& model);
 
   std::deque<sensor_msgs::JointState> joints_in_;
   std::deque<std::pair<ros::Time, Eigen::Vector3d>> payload_in_;  ///< stamp, base frame
@@ -95,6 +114,10 @@ class TwinAdapter {
   PayloadForecast last_forecast_;
   /// The forecast running on its own thread (the node's steps go on meanwhile).
   std::future<PayloadForecast> forecast_job_;
+  /// Jobs of forecasters replaced while they ran (a new load): left to finish, never waited
+  /// for on the twin's thread, their forecasts dropped.
+  std::vector<std::future<PayloadForecast>> retired_jobs_;
+  void dropFinishedRetiredJobs();
   void collectForecast(const std::function<ros::Time(double)>& stamp_of);
 };
 

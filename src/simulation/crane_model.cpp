@@ -43,6 +43,18 @@ void setRopeAndLoad(CraneModel& m) {
   m.hook_mass = scene.hasRigging() ? scene.hookBlockMass() : 0.0;
 }
 
+// The modes every simulation of the model needs (makeRopeSupport).
+void computeStructureModes(CraneModel& m) {
+  m.structure_modal_basis.reset();
+  const Scene& sc = m.scene;
+  if (!m.structure || sc.structure_model == "rigid") return;
+  if (sc.structure_modes >= m.structure->free_dofs) return;  // makeRopeSupport refuses it
+  ModalOptions opt;
+  opt.count = sc.structure_modes;
+  m.structure_modal_basis =
+      std::make_shared<const ModalBasis>(lowestModes(m.structure->K, m.structure->M, opt));
+}
+
 CraneModel buildCraneModel(const Scene& scene) {
   CraneModel m;
   m.scene = scene;
@@ -50,6 +62,7 @@ CraneModel buildCraneModel(const Scene& scene) {
   if (scene.crane) m.structure = TowerCraneStructure::build(*scene.crane);
   setRopeAndLoad(m);
   if (scene.structure_geometric_stiffness) addGeometricStiffness(m);
+  computeStructureModes(m);
   return m;
 }
 
@@ -80,6 +93,7 @@ CraneModel withScene(const CraneModel& model, const Scene& scene) {
     TowerCraneStructure& st = *m.structure;
     st.K = st.K - geometricStiffness(st, model.structure_axial_forces);
     addGeometricStiffness(m);
+    computeStructureModes(m);  // K changed with the load
   }
   return m;
 }

@@ -35,9 +35,14 @@ std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
                      std::to_string(st.free_dofs) + " DOF, got " +
                      std::to_string(sc.structure_modes));
   }
-  ModalOptions opt;
-  opt.count = sc.structure_modes;
-  const ModalBasis b = lowestModes(st.K, st.M, opt);
+  // The model's modes (buildCraneModel), or computed here for a model built otherwise.
+  std::shared_ptr<const ModalBasis> modes = model.structure_modal_basis;
+  if (!modes) {
+    ModalOptions opt;
+    opt.count = sc.structure_modes;
+    modes = std::make_shared<const ModalBasis>(lowestModes(st.K, st.M, opt));
+  }
+  const ModalBasis& b = *modes;
   if (sc.structure_model == "modal") {
     auto modal = std::make_unique<ModalStructureSupport>(st, b, sc.structure_damping_ratio,
                                                          sc.trolley_radius, theta);

@@ -9,6 +9,7 @@ namespace crane_twin {
 
 // Sample times are sums of time steps: a hold of 0.2 s at 10 Hz is two samples, not three.
 constexpr double kTimeTolerance = 1e-9;
+constexpr double kPi = 3.14159265358979323846;
 
 void LoadCellSettings::check() const {
   auto fail = [](const std::string& name, const std::string& what) {
@@ -84,8 +85,13 @@ void LoadCellMonitor::add(const LoadCellSample& s) {
     window_mass_ = s.end_mass;
     startWindow(s.t);
   }
-  sum_measured_ += e_measured;
-  sum_twin_ += e_twin;
+  // Hann weights: the rope's axial ringing after a lift-off (about 1 Hz, up to a third of the
+  // weight, in the crane and in the twin at different frequencies and phases) leaks into a
+  // window's mean as (pi f T)^-1 unweighted, as (pi f T)^-1 / ((f T)^2 - 1) with them.
+  const double u = std::min((s.t - window_start_) / settings_.window, 1.0);
+  const double w = std::pow(std::sin(kPi * u), 2);
+  sum_measured_ += w * e_measured;
+  sum_twin_ += w * e_twin;
   if (s.t - window_start_ < settings_.window - kTimeTolerance) return;
   if (sum_twin_ > 0.0 && sum_measured_ > 0.0) {
     estimate_ = window_mass_ * sum_measured_ / sum_twin_;

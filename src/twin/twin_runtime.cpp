@@ -71,6 +71,11 @@ void TwinRuntime::afterStep(Simulation& sim, double h,
     payload_in_.pop_front();
     // The twin's payload when the measurement was taken, p(t - age) = p - v age.
     const SeriesValues v = sim.series();
+    // A load resting on the ground does not sway: nothing to correct.
+    if (v.payload_landed) {
+      ++payload_on_ground_;
+      continue;
+    }
     const Eigen::Vector3d p = v.payload - age * v.payload_velocity;
     const SwayUpdate u =
         estimator_->update(z.head<2>(), p.head<2>(), swayModelAt(sim, v, modes_, gravity_));

@@ -3,6 +3,7 @@
 // the rope end. Everything a simulation mutates lives elsewhere.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "crane_twin/elements/ground_contact.hpp"
 #include "crane_twin/integrators/generalized_alpha.hpp"
 #include "crane_twin/io/scene.hpp"
+#include "crane_twin/structure/modal_analysis.hpp"
 #include "crane_twin/structure/tower_crane_structure.hpp"
 
 namespace crane_twin {
@@ -44,6 +46,11 @@ struct CraneModel {
   /// With structure.geometric_stiffness: each member's axial force under the self-weight and
   /// the static hanging load [N] (tension positive); structure->K then holds K + K_G.
   Eigen::VectorXd structure_axial_forces;
+  /// The structure.modes lowest modes of (K, M) for structure.model modal or full (empty for
+  /// rigid, or when structure.modes is not below the structure's DOF): computed once here, not
+  /// by every simulation of the model (a twin's load change, a forecaster), and shared by
+  /// copies of the model.
+  std::shared_ptr<const ModalBasis> structure_modal_basis;
 
   /// Rope DOF count of the ANCF discretisation: 6 per node, and the payload point's 3 with a
   /// rigging (AncfRope).

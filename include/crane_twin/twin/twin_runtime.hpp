@@ -67,6 +67,9 @@ class TwinRuntime {
   const SwayUpdate& lastUpdate() const { return last_update_; }
   long payloadUpdates() const { return payload_updates_; }
   long payloadRefused() const { return payload_refused_; }
+  /// Payload measurements taken while the twin's load rested on its ground (not applied: a
+  /// landed load does not sway).
+  long payloadOnGround() const { return payload_on_ground_; }
   long correctionFailures() const { return correction_failures_; }
   /// The filtered measured / twin top tension (1 until a tension arrives).
   double tensionRatio() const { return tension_ratio_; }
@@ -95,7 +98,7 @@ class TwinRuntime {
   std::deque<double> tension_in_;
   double last_payload_t_ = -1e300;
   SwayUpdate last_update_;
-  long payload_updates_ = 0, payload_refused_ = 0, correction_failures_ = 0;
+  long payload_updates_ = 0, payload_refused_ = 0, correction_failures_ = 0, payload_on_ground_ = 0;
   double tension_ratio_ = 1.0;
   bool tension_seen_ = false;
 };
