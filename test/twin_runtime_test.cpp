@@ -82,14 +82,14 @@ TEST(TwinRuntime, AnAcceptedMeasurementPullsTheTwinTowardItAndAFarOneIsRefused) 
 TEST(TwinRuntime, TheTensionFilterAndTheLoadCellFindTheLoadTheRopeCarries) {
   // A rope whose end carries 20 % more than the twin's, hanging from the start, the measured
   // tension U + 1.2 (T - U) with U = mu L g the rope's weight: the filtered ratio, and after one
-  // 5 s window the end mass 1.2 m_e, offered once.
+  // 8 s window the end mass 1.2 m_e, offered once.
   TwinRun r({});
   r.step();
   EXPECT_FALSE(r.runtime.tensionSeen());
   EXPECT_DOUBLE_EQ(r.runtime.tensionRatio(), 1.0);
   EXPECT_DOUBLE_EQ(r.runtime.payloadMassEstimate(), r.model.scene.payload_mass);
   std::optional<double> offered;
-  while (r.sim->time() < 6.0) {
+  while (r.sim->time() < 9.0) {
     const SeriesValues v = r.sim->series();
     const double u = r.model.rope.mass_per_length * v.rope_length * r.model.scene.gravity;
     r.runtime.addTension(u + 1.2 * (v.rope_top_tension - u));

@@ -86,25 +86,18 @@ Eigen::Vector3d MeasuredJointFollower::holdRates(double t) const {
   return slope(settings_.hold_window);
 }
 
-Eigen::Vector3d MeasuredJointFollower::slope(double window, Eigen::Vector3d* at_newest) const {
-  // The least-squares line x(t) = xm + v (t - tm) through the samples of the window, relative to
-  // the newest (slew angles unwrapped against it): v = sum (t_i - tm)(x_i - x_last) /
-  // sum (t_i - tm)^2, and its value at the newest sample's time.
-  if (at_newest) *at_newest = last_->position;
+Eigen::Vector3d MeasuredJointFollower::slope(double window) const {
+  // Least-squares slope v = sum (t_i - tm)(x_i - x_last) / sum (t_i - tm)^2, the slew angles
+  // unwrapped against the newest.
   double tm = 0.0;
   int n = 0;
-  Eigen::Vector3d xm = Eigen::Vector3d::Zero();
   for (const JointSample& w : window_) {
     if (w.t < last_->t - window) continue;
-    Eigen::Vector3d d = w.position - last_->position;
-    d.x() = wrapAngle(d.x());
     tm += w.t;
-    xm += d;
     ++n;
   }
   if (n < 2) return Eigen::Vector3d::Zero();
   tm /= static_cast<double>(n);
-  xm /= static_cast<double>(n);
   double stt = 0.0;
   Eigen::Vector3d stx = Eigen::Vector3d::Zero();
   for (const JointSample& w : window_) {
@@ -114,10 +107,7 @@ Eigen::Vector3d MeasuredJointFollower::slope(double window, Eigen::Vector3d* at_
     stt += (w.t - tm) * (w.t - tm);
     stx += (w.t - tm) * d;
   }
-  if (!(stt > 1e-9)) return Eigen::Vector3d::Zero();
-  const Eigen::Vector3d v = stx / stt;
-  if (at_newest) *at_newest = last_->position + xm + v * (last_->t - tm);
-  return v;
+  return stt > 1e-9 ? Eigen::Vector3d(stx / stt) : Eigen::Vector3d::Zero();
 }
 
 CommandEntry MeasuredJointFollower::command(double t, const CraneDrives& drives,
@@ -125,15 +115,9 @@ CommandEntry MeasuredJointFollower::command(double t, const CraneDrives& drives,
   CommandEntry c;
   c.t = t;
   if (!last_) return c;
-  // Without measured velocities, the target starts from the velocity window's least-squares
-  // line at the newest sample's time, not from the newest sample itself: its noise would go
-  // through the gain into the drives and shake the rope (docs/twin.md "Following the crane").
-  Eigen::Vector3d v = rates(t), from = last_->position;
-  if (!last_->velocity && age(t) <= settings_.max_extrapolation) {
-    v = slope(settings_.velocity_window, &from);
-  }
+  const Eigen::Vector3d v = rates(t);
   const double ahead = std::clamp(t - last_->t, 0.0, settings_.max_extrapolation);
-  const Eigen::Vector3d target = from + v * ahead;
+  const Eigen::Vector3d target = last_->position + v * ahead;
   const Eigen::Vector3d model(drives.slewAngle(), drives.trolleyRadius(), drives.hoistLength());
   Eigen::Vector3d e = target - model;
   e.x() = wrapAngle(e.x());

@@ -6,8 +6,6 @@
 //
 // Per axis, with the newest sample (t_k, x_k, v_k) at time t:
 //   target x* = x_k + v_k min(t - t_k, max_extrapolation),      (bridges gaps and latency)
-// (without measured velocities x_k is the least-squares line's value at t_k, which halves a
-// 30 Hz encoder's noise in the target, and v_k its slope)
 //   rate     = v_k + gain (x* - x_model),  limited to the drive's max speed,
 // v_k the measured velocity, or, when the message has none, the slope of a least-squares line
 // through the samples of the last velocity_window seconds (a finite difference of two samples
@@ -75,9 +73,7 @@ class MeasuredJointFollower {
   JointFollowerSettings settings_;
   std::optional<JointSample> last_;
   std::deque<JointSample> window_;  ///< samples within hold_window of the newest
-  /// The least-squares slope over the last `window` seconds of samples, and the line's value at
-  /// the newest sample's time into *at_newest (the newest sample itself with fewer than two).
-  Eigen::Vector3d slope(double window, Eigen::Vector3d* at_newest = nullptr) const;
+  Eigen::Vector3d slope(double window) const;
   long refused_ = 0;
 };
 
