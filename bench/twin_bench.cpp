@@ -1,5 +1,6 @@
 // The twin's costs (docs/twin.md): a 30 s forecast of the live scene (its default 20 ms step,
-// and the twin's own 5 ms), and one estimator update with its correction.
+// and the twin's own 5 ms), one estimator update with its correction, and a load change in a
+// running twin (withPayloadMass, continueWithModel, a forecaster for the new load).
 #include <benchmark/benchmark.h>
 
 #include "crane_twin/io/scene.hpp"
@@ -33,6 +34,23 @@ static void BM_Forecast30s(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_Forecast30s)->Arg(20)->Arg(5)->ArgName("step_ms")->Unit(benchmark::kMillisecond);
+
+// The load cell found another load: the model changed, the running simulation continued with
+// it, a forecaster built for it (docs/twin.md "Picks and set-downs").
+static void BM_TwinLoadChange(benchmark::State& state) {
+  const CraneModel m = liveScene();
+  std::unique_ptr<Simulation> twin = makeSimulation(m);
+  twin->initialize();
+  for (int k = 0; k < 100; ++k) twin->step();
+  for (auto _ : state) {
+    const CraneModel heavier = withPayloadMass(m, m.scene.payload_mass + 1000.0);
+    std::unique_ptr<Simulation> next = continueWithModel(heavier, *twin);
+    PayloadForecaster f(heavier, 0.01);
+    benchmark::DoNotOptimize(next);
+    benchmark::DoNotOptimize(f);
+  }
+}
+BENCHMARK(BM_TwinLoadChange)->Unit(benchmark::kMillisecond);
 
 // One payload measurement: the filter's update (with the structure's sideways modes) and the
 // correction of the reduced state.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -490,4 +491,50 @@ TEST(CraneSimCli, LiftOffOverTheDesignFactorIsAWarning) {
   r = run("run " + scene + " --set hoist.design_phi2=0.5");
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find("hoist.design_phi2"), std::string::npos) << r.out;
+}
+
+TEST(CraneSimCli, RainflowCountsAColumnAndSumsTheDamage) {
+  // The ASTM E1049-85 example in MPa as a stress_ column in Pa: the standard's counts, then
+  // Miner's sum on category 71 by hand: sum count (ds / 71)^3 / 2e6 = 1094 / (71^3 2e6).
+  const std::string csv = ::testing::TempDir() + "rainflow.csv";
+  {
+    std::ofstream f(csv);
+    f << "t,stress_mast_foot,other\n";
+    const double s[] = {-2, 1, -3, 5, -1, 3, -4, 4, -2};
+    for (int i = 0; i < 9; ++i) f << i << ',' << s[i] * 1e6 << ",0\n";
+  }
+  const Result r = run("rainflow " + csv + " --column stress_mast_foot --detail-category 71");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const std::vector<std::string> l = lines(r.out);
+  ASSERT_EQ(l.size(), 9u) << r.out;
+  EXPECT_EQ(l[0], "range,mean,count");
+  EXPECT_EQ(l[1], "4000000,1000000,1");
+  std::map<double, double> counts;
+  for (std::size_t i = 1; i + 1 < l.size(); ++i) {
+    double range = 0.0, mean = 0.0, count = 0.0;
+    ASSERT_EQ(std::sscanf(l[i].c_str(), "%lf,%lf,%lf", &range, &mean, &count), 3) << l[i];
+    counts[range * 1e-6] += count;
+  }
+  const std::map<double, double> table = {{3, 0.5}, {4, 1.5}, {6, 0.5}, {8, 1.0}, {9, 0.5}};
+  EXPECT_EQ(counts, table);
+  double damage = 0.0;
+  ASSERT_EQ(std::sscanf(l.back().c_str(), "damage,%lf", &damage), 1) << l.back();
+  const double closed = 1094.0 / (71.0 * 71.0 * 71.0 * 2e6);
+  EXPECT_NEAR(damage, closed, 1e-9 * closed);
+  // gamma_Mf 1.25 scales every range: the damage by 1.25^3.
+  const Result g =
+      run("rainflow " + csv + " --column stress_mast_foot --detail-category 71 --gamma-mf 1.25");
+  ASSERT_EQ(g.status, 0) << g.out;
+  ASSERT_EQ(std::sscanf(lines(g.out).back().c_str(), "damage,%lf", &damage), 1);
+  EXPECT_NEAR(damage, closed * 1.953125, 1e-9 * closed);
+  // Bad input: exit 2, what is wrong named.
+  const Result col = run("rainflow " + csv + " --column stress_jib_root");
+  EXPECT_EQ(col.status, 2);
+  EXPECT_NE(col.out.find("stress_jib_root"), std::string::npos) << col.out;
+  const Result lone = run("rainflow " + csv + " --column stress_mast_foot --gamma-mf 1.1");
+  EXPECT_EQ(lone.status, 2);
+  EXPECT_NE(lone.out.find("--detail-category"), std::string::npos) << lone.out;
+  const Result neg = run("rainflow " + csv + " --column stress_mast_foot --detail-category -71");
+  EXPECT_EQ(neg.status, 2);
+  EXPECT_NE(neg.out.find("--detail-category"), std::string::npos) << neg.out;
 }

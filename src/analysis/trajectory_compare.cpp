@@ -6,75 +6,12 @@
 #include <sstream>
 
 #include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/io/csv_columns.hpp"
 
 namespace crane_twin {
 
-namespace {
-
-std::vector<std::string> splitCsv(const std::string& line) {
-  std::vector<std::string> v;
-  std::stringstream ss(line);
-  for (std::string x; std::getline(ss, x, ',');) v.push_back(x);
-  if (!line.empty() && line.back() == ',') v.push_back("");
-  return v;
-}
-
-double parseNumber(const std::string& s, const std::string& file, int line,
-                   const std::string& column) {
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(s, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != s.size() || !std::isfinite(v)) {
-    throw InputError(file + ": line " + std::to_string(line) + ", column '" + column +
-                     "': not a finite number: '" + s + "'");
-  }
-  return v;
-}
-
-// Rows of a CSV as numbers keyed by the named columns.
-std::vector<std::vector<double>> readColumns(const std::string& file,
-                                             const std::vector<std::string>& wanted) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file + ": cannot open for reading");
-  std::string line;
-  if (!std::getline(in, line)) throw InputError(file + ": empty file (no header row)");
-  const std::vector<std::string> header = splitCsv(line);
-  std::vector<int> index;
-  for (const auto& w : wanted) {
-    int k = -1;
-    for (std::size_t i = 0; i < header.size(); ++i)
-      if (header[i] == w) k = static_cast<int>(i);
-    if (k < 0) throw InputError(file + ": header has no column '" + w + "'");
-    index.push_back(k);
-  }
-  std::vector<std::vector<double>> rows;
-  int lineNo = 1;
-  while (std::getline(in, line)) {
-    ++lineNo;
-    if (line.empty()) continue;
-    const std::vector<std::string> f = splitCsv(line);
-    if (f.size() != header.size()) {
-      throw InputError(file + ": line " + std::to_string(lineNo) + ": " + std::to_string(f.size()) +
-                       " fields, header has " + std::to_string(header.size()));
-    }
-    std::vector<double> r;
-    for (std::size_t i = 0; i < index.size(); ++i) {
-      r.push_back(parseNumber(f[index[i]], file, lineNo, wanted[i]));
-    }
-    rows.push_back(std::move(r));
-  }
-  if (rows.empty()) throw InputError(file + ": no data rows");
-  return rows;
-}
-
-}  // namespace
-
 Trajectory readTrajectory(const std::string& series_csv, const std::string& nodes_csv) {
-  const auto rows = readColumns(
+  const auto rows = readCsvColumns(
       series_csv, {"t", "payload_x", "payload_y", "payload_z", "cab_dx", "cab_dy", "cab_dz",
                    "jib_tip_dx", "jib_tip_dy", "jib_tip_dz", "rope_length", "rope_top_tension"});
   Trajectory tr;
@@ -87,7 +24,7 @@ Trajectory readTrajectory(const std::string& series_csv, const std::string& node
   }
   tr.rope_length = rows.front()[10];
   if (nodes_csv.empty()) return tr;
-  const auto nrows = readColumns(nodes_csv, {"t", "node", "x", "y", "z"});
+  const auto nrows = readCsvColumns(nodes_csv, {"t", "node", "x", "y", "z"});
   std::map<long, std::vector<Eigen::Vector3d>> byTime;
   for (const auto& r : nrows) {
     auto& v = byTime[std::lround(r[0] * 1e9)];

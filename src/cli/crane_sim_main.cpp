@@ -9,12 +9,15 @@
 #include <fstream>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "crane_twin/analysis/accuracy_sweep.hpp"
+#include "crane_twin/analysis/rainflow.hpp"
 #include "crane_twin/analysis/trajectory_compare.hpp"
 #include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/io/csv_columns.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
 #include "crane_twin/simulation/invariant_reduced_simulation.hpp"
@@ -288,6 +291,30 @@ int runSweep(const SceneArgs& a, const SweepArgs& w) {
   return 0;
 }
 
+// crane_sim rainflow (docs/cli.md, docs/fatigue.md): the cycles of one column, and with a
+// detail category Miner's sum on its S-N curve.
+int runRainflow(const std::string& file, const std::string& column,
+                const std::optional<double>& category, double gamma_mf) {
+  std::vector<double> history;
+  for (const auto& row : ct::readCsvColumns(file, {column})) history.push_back(row[0]);
+  std::optional<ct::SnCurve> curve;
+  if (category) {
+    curve = ct::SnCurve{*category, gamma_mf};
+    try {
+      curve->check();
+    } catch (const std::invalid_argument& e) {
+      throw ct::InputError(std::string("--detail-category / --gamma-mf: ") + e.what());
+    }
+  }
+  const std::vector<ct::RainflowCycle> cycles = ct::rainflowCount(history);
+  std::printf("range,mean,count\n");
+  for (const ct::RainflowCycle& c : cycles) {
+    std::printf("%.10g,%.10g,%g\n", c.range, c.mean, c.count);
+  }
+  if (curve) std::printf("damage,%.12g\n", ct::minerDamage(cycles, *curve));
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -332,6 +359,21 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   sweep->add_option("--interval", sweepOpts.interval, "sampling interval of the comparison [s]")
       ->check(CLI::PositiveNumber);
+  std::string rfFile, rfColumn;
+  double rfCategory = 0.0, rfGamma = 1.0;
+  CLI::App* rainflow = app.add_subcommand(
+      "rainflow", "rainflow-count one column of a CSV, and Miner's sum (docs/fatigue.md)");
+  rainflow->add_option("file", rfFile, "CSV with a header row")->required();
+  rainflow->add_option("--column", rfColumn, "the column to count (stress_ columns: Pa)")
+      ->required();
+  CLI::Option* rfCategoryOpt =
+      rainflow
+          ->add_option("--detail-category", rfCategory,
+                       "EN 13001-3-1 detail category [MPa]: end with damage,<Miner sum>")
+          ->check(CLI::PositiveNumber);
+  rainflow->add_option("--gamma-mf", rfGamma, "partial safety factor gamma_Mf (>= 1)")
+      ->check(CLI::Range(1.0, 1e9))
+      ->needs(rfCategoryOpt);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -347,6 +389,11 @@ int main(int argc, char** argv) {
     if (*stat) return runStatic(staticArgs);
     if (*cmp) return runCompare(cmpA, cmpB, cmpNA, cmpNB);
     if (*sweep) return runSweep(sweepArgs, sweepOpts);
+    if (*rainflow) {
+      return runRainflow(rfFile, rfColumn,
+                         rfCategoryOpt->count() ? std::optional<double>(rfCategory) : std::nullopt,
+                         rfGamma);
+    }
   } catch (const ct::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";
     return 2;
