@@ -538,3 +538,39 @@ TEST(CraneSimCli, RainflowCountsAColumnAndSumsTheDamage) {
   EXPECT_EQ(neg.status, 2);
   EXPECT_NE(neg.out.find("--detail-category"), std::string::npos) << neg.out;
 }
+
+TEST(CraneSimCli, T8036HotSpotStressesReachStaticAndTheRunsColumns) {
+  // static: the four hot spots' keys, the jib's top chord pulled and the mast's jib-side chord
+  // pushed; a heavier load pushes the mast foot harder (docs/fatigue.md).
+  auto stressOf = [](const std::string& out, const std::string& name) {
+    const auto pos = out.find("\nstress_" + name + ",");
+    return pos == std::string::npos ? std::nan("") : std::stod(out.substr(pos + 9 + name.size()));
+  };
+  const Result a = run("static " + kScene + " --set rope.elements=10");
+  const Result b = run("static " + kScene + " --set rope.elements=10 --set payload.mass=8000");
+  ASSERT_EQ(a.status, 0) << a.out;
+  ASSERT_EQ(b.status, 0) << b.out;
+  EXPECT_GT(stressOf(a.out, "jib_root"), 0.0) << a.out;
+  EXPECT_LT(stressOf(a.out, "mast_foot"), 0.0) << a.out;
+  EXPECT_LT(stressOf(b.out, "mast_foot"), stressOf(a.out, "mast_foot") - 1e6);
+  EXPECT_FALSE(std::isnan(stressOf(a.out, "counter_jib_root")));
+  EXPECT_FALSE(std::isnan(stressOf(a.out, "mast_top")));
+  // run: the columns after contact_force, one value per row.
+  const std::string csv = ::testing::TempDir() + "stresses.csv";
+  const Result r = run("run " + kScene + " --set rope.elements=10 --set duration=0.05 --out " +
+                       csv + " --quiet");
+  ASSERT_EQ(r.status, 0) << r.out;
+  std::ifstream in(csv);
+  std::string header, row;
+  std::getline(in, header);
+  std::getline(in, row);
+  EXPECT_NE(header.find(",contact_force,stress_mast_foot,stress_mast_top,stress_jib_root,"
+                        "stress_counter_jib_root"),
+            std::string::npos)
+      << header;
+  EXPECT_EQ(std::count(header.begin(), header.end(), ','), std::count(row.begin(), row.end(), ','));
+  // A rigid structure has none.
+  const Result g = run("static " + kScene + " --set rope.elements=10 --set structure.model=rigid");
+  ASSERT_EQ(g.status, 0) << g.out;
+  EXPECT_EQ(g.out.find("stress_"), std::string::npos) << g.out;
+}

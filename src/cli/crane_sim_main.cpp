@@ -144,7 +144,7 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   const long steps = std::lround(sc.duration / sc.time_step);
   const long every = std::max(1L, std::lround(sc.output_interval / sc.time_step));
   const bool bar = !r.quiet && isatty(fileno(stdout)) && isatty(fileno(stderr));
-  if (series) series << ct::kSeriesHeader << "\n";
+  if (series) series << ct::seriesHeader(m) << "\n";
   if (nodes) nodes << "t,node,x,y,z\n";
   // Physical warnings: each kind reported on stderr when first seen, with a count of
   // the output rows that carried it at the end; the CSV carries them in every row.
@@ -213,6 +213,15 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   return 0;
 }
 
+// The hot spots' stresses of the structure's state z (docs/fatigue.md) as stress_<name> keys.
+void printStresses(const ct::CraneModel& m, const Eigen::VectorXd& z) {
+  if (!m.hot_spots) return;
+  const Eigen::VectorXd sigma = m.hot_spots->stresses(z);
+  for (std::size_t i = 0; i < m.hot_spots->rows.size(); ++i) {
+    std::printf("stress_%s,%.6f\n", m.hot_spots->rows[i].name.c_str(), sigma(i));
+  }
+}
+
 int runStatic(const SceneArgs& a) {
   const ct::CraneModel m = ct::buildCraneModel(ct::loadScene(a.scene, a.sets));
   Eigen::Vector3d H;
@@ -225,6 +234,7 @@ int runStatic(const SceneArgs& a) {
     std::printf("jib_tip_dz,%.9f\n", sim.support().jibTipDisplacement(s.z).z());
     std::printf("cab_dx,%.9f\n", sim.support().cabDisplacement(s.z).x());
     std::printf("holding_force_x,%.6f\nholding_force_y,%.6f\n", H.x(), H.y());
+    printStresses(m, s.z);
     return 0;
   }
   ct::CraneSimulation sim(m);
@@ -235,6 +245,7 @@ int runStatic(const SceneArgs& a) {
   std::printf("jib_tip_dz,%.9f\n", sim.support().jibTipDisplacement(s.z).z());
   std::printf("cab_dx,%.9f\n", sim.support().cabDisplacement(s.z).x());
   std::printf("holding_force_x,%.6f\nholding_force_y,%.6f\n", H.x(), H.y());
+  printStresses(m, s.z);
   return 0;
 }
 

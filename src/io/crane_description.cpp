@@ -96,6 +96,28 @@ CraneDescription loadCraneDescription(const std::string& path) {
     m.finish();
     c.lumped_masses.push_back(l);
   }
+  for (ConfigNode h : root.mapList("hot_spots")) {
+    HotSpotSpec spot;
+    spot.name = h.string("name", std::nullopt);
+    if (spot.name.empty() ||
+        spot.name.find_first_not_of("abcdefghijklmnopqrstuvwxyz0123456789_") != std::string::npos) {
+      h.fail("name", "must be lower-case letters, digits and _ (it names a CSV column)");
+    }
+    for (const HotSpotSpec& o : c.hot_spots) {
+      if (o.name == spot.name) h.fail("name", "'" + spot.name + "' is named twice");
+    }
+    spot.point = h.vec3("point", std::nullopt);
+    spot.along = h.vec3("along", std::nullopt);
+    spot.fibre = h.vec3("fibre", std::nullopt);
+    spot.detail_category = h.number("detail_category", std::nullopt, Bounds::positive());
+    if (!(spot.along.norm() > 0.0)) h.fail("along", "must be a direction (not zero)");
+    if (spot.fibre.cross(spot.along).norm() < 1e-6 * spot.fibre.norm() * spot.along.norm() ||
+        !(spot.fibre.norm() > 0.0)) {
+      h.fail("fibre", "must point across the member (not zero, not along it)");
+    }
+    h.finish();
+    c.hot_spots.push_back(spot);
+  }
   {
     ConfigNode m = root.map("trolley", true);
     c.trolley_mass = m.number("trolley_mass", std::nullopt, Bounds::nonNegative());

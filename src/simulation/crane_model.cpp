@@ -55,6 +55,40 @@ void computeStructureModes(CraneModel& m) {
       std::make_shared<const ModalBasis>(lowestModes(m.structure->K, m.structure->M, opt));
 }
 
+// The hot spots' stresses as functions of the structure's coordinates (after the modes).
+void computeHotSpots(CraneModel& m) {
+  m.hot_spots.reset();
+  const Scene& sc = m.scene;
+  if (!m.structure || !sc.crane || sc.crane->hot_spots.empty() || sc.structure_model == "rigid") {
+    return;
+  }
+  if (sc.structure_model == "modal" && !m.structure_modal_basis) return;
+  const TowerCraneStructure& st = *m.structure;
+  auto t = std::make_shared<HotSpotTable>();
+  try {
+    t->rows = hotSpotRows(st, sc.crane->hot_spots);
+  } catch (const InputError& e) {
+    throw InputError(sc.crane->file + ": key 'hot_spots': " + e.what());
+  }
+  const Eigen::VectorXd u_sw = staticDisplacement(st, selfWeightLoad(st, sc.gravity));
+  const int n = static_cast<int>(t->rows.size());
+  const bool modal = sc.structure_model == "modal";
+  t->self_weight.resize(n);
+  t->per_coordinate.setZero(n, modal ? m.structure_modal_basis->phi.cols() : st.free_dofs);
+  for (int i = 0; i < n; ++i) {
+    const HotSpotRow& r = t->rows[i];
+    t->self_weight(i) = r.stress(u_sw);
+    for (const auto& [eq, c] : r.coefficients) {
+      if (modal) {
+        t->per_coordinate.row(i) += c * m.structure_modal_basis->phi.row(eq);
+      } else {
+        t->per_coordinate(i, eq) += c;
+      }
+    }
+  }
+  m.hot_spots = t;
+}
+
 CraneModel buildCraneModel(const Scene& scene) {
   CraneModel m;
   m.scene = scene;
@@ -63,6 +97,7 @@ CraneModel buildCraneModel(const Scene& scene) {
   setRopeAndLoad(m);
   if (scene.structure_geometric_stiffness) addGeometricStiffness(m);
   computeStructureModes(m);
+  computeHotSpots(m);
   return m;
 }
 
@@ -94,6 +129,7 @@ CraneModel withScene(const CraneModel& model, const Scene& scene) {
     st.K = st.K - geometricStiffness(st, model.structure_axial_forces);
     addGeometricStiffness(m);
     computeStructureModes(m);  // K changed with the load
+    computeHotSpots(m);
   }
   return m;
 }

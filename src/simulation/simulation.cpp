@@ -16,6 +16,14 @@ const char* const kSeriesHeader =
     "rope_length,slew_angle,trolley_radius,energy,constraint_error,subdomains,"
     "tension_ratio,load_chart_ratio,warnings,full_order_steps,payload_landed,contact_force";
 
+std::string seriesHeader(const CraneModel& model) {
+  std::string h = kSeriesHeader;
+  if (model.hot_spots) {
+    for (const HotSpotRow& r : model.hot_spots->rows) h += ",stress_" + r.name;
+  }
+  return h;
+}
+
 const char* warningName(int bit) {
   switch (bit) {
     case kTensionOverBreakingForce:
@@ -52,7 +60,9 @@ void writeSeriesRow(std::ostream& out, const SeriesValues& v) {
   out << ',' << v.rope_top_tension << ',' << v.rope_length << ',' << v.slew_angle << ','
       << v.trolley_radius << ',' << v.energy << ',' << v.constraint_error << ',' << v.subdomains
       << ',' << v.tension_ratio << ',' << v.load_chart_ratio << ',' << v.warnings << ','
-      << v.full_order_steps << ',' << (v.payload_landed ? 1 : 0) << ',' << v.contact_force << '\n';
+      << v.full_order_steps << ',' << (v.payload_landed ? 1 : 0) << ',' << v.contact_force;
+  for (double sigma : v.stresses) out << ',' << sigma;
+  out << '\n';
 }
 
 void Simulation::setMeasuredWind(const Eigen::Vector3d&) {

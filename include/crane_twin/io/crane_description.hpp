@@ -53,6 +53,17 @@ struct RopeSpec {
   int falls = 2;
 };
 
+/// A fatigue hot spot (docs/fatigue.md): the member whose end node is nearest `point` among
+/// those along `along`, at that end's section, the tube's outer fibre toward `fibre` (projected
+/// on the section), an EN 13001-3-1 detail category.
+struct HotSpotSpec {
+  std::string name;                                  ///< the CSV column is stress_<name>
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();   ///< slewing frame [m]
+  Eigen::Vector3d along = Eigen::Vector3d::UnitZ();  ///< the member's axis (either sense)
+  Eigen::Vector3d fibre = Eigen::Vector3d::UnitX();  ///< toward the fibre (slewing frame)
+  double detail_category = 0.0;                      ///< ds_c [MPa]
+};
+
 struct CraneDescription {
   std::string name;
   std::string file;
@@ -66,6 +77,7 @@ struct CraneDescription {
   LatticeBoomSpec jib, counter_jib;
   Eigen::Vector3d cab_position = Eigen::Vector3d::Zero();  ///< slewing frame [m]
   std::vector<LumpedMassSpec> lumped_masses;
+  std::vector<HotSpotSpec> hot_spots;  ///< `hot_spots:` (none: no stress output)
   double trolley_mass = 0.0, hook_block_mass = 0.0;
   double min_radius = 0.0, max_radius = 0.0;
   double min_rope_length = 0.0, max_rope_length = 0.0;

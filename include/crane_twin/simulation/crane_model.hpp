@@ -11,6 +11,7 @@
 #include "crane_twin/elements/ground_contact.hpp"
 #include "crane_twin/integrators/generalized_alpha.hpp"
 #include "crane_twin/io/scene.hpp"
+#include "crane_twin/structure/hot_spot_stress.hpp"
 #include "crane_twin/structure/modal_analysis.hpp"
 #include "crane_twin/structure/tower_crane_structure.hpp"
 
@@ -33,6 +34,19 @@ struct EquivalentRope {
   }
 };
 
+/// The crane's hot-spot stresses as a run reads them (docs/fatigue.md): sigma = sigma_sw +
+/// S_z z, z the structure's coordinates (modal: S Phi; full: S), sigma_sw under the self-weight
+/// (the state the structure's dynamics runs about, docs/model.md).
+struct HotSpotTable {
+  std::vector<HotSpotRow> rows;
+  Eigen::VectorXd self_weight;     ///< [Pa], one per hot spot
+  Eigen::MatrixXd per_coordinate;  ///< S_z [Pa per coordinate], hot spots x coordinates
+  /// sigma for the structure's coordinates z [Pa].
+  Eigen::VectorXd stresses(const Eigen::VectorXd& z) const {
+    return self_weight + per_coordinate * z;
+  }
+};
+
 struct CraneModel {
   Scene scene;
   std::optional<TowerCraneStructure> structure;  ///< built unless crane: none
@@ -51,6 +65,8 @@ struct CraneModel {
   /// by every simulation of the model (a twin's load change, a forecaster), and shared by
   /// copies of the model.
   std::shared_ptr<const ModalBasis> structure_modal_basis;
+  /// The crane file's hot spots with a flexible structure (modal or full; empty otherwise).
+  std::shared_ptr<const HotSpotTable> hot_spots;
 
   /// Rope DOF count of the ANCF discretisation: 6 per node, and the payload point's 3 with a
   /// rigging (AncfRope).

@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <memory>
 #include <ostream>
+#include <string>
 #include <vector>
 
 namespace crane_twin {
@@ -35,6 +36,9 @@ struct SeriesValues {
   // The ground (docs/model.md "Ground contact"; 0 without `ground:`).
   bool payload_landed = false;  ///< the payload presses on the ground (contact_force > 0)
   double contact_force = 0.0;   ///< the ground's normal force on the payload [N]
+  /// The crane file's hot spots' normal stresses [Pa, tension positive] (docs/fatigue.md;
+  /// empty without hot spots or with a rigid structure), in CraneModel::hot_spots' order.
+  std::vector<double> stresses;
 };
 
 /// Bits of SeriesValues::warnings.
@@ -52,8 +56,10 @@ enum Warning : int {
 /// Human-readable name of one warning bit.
 const char* warningName(int bit);
 
-/// docs/cli.md time-series columns, in order.
+/// docs/cli.md time-series columns, in order (without the stress_ columns).
 extern const char* const kSeriesHeader;
+/// The header of a run of `model`: kSeriesHeader, then stress_<name> per hot spot.
+std::string seriesHeader(const CraneModel& model);
 void writeSeriesRow(std::ostream& out, const SeriesValues& v);
 
 /// What a run counts (docs/cli.md, the summary line); zero where a model has no such thing.
