@@ -28,7 +28,8 @@ def row(s, full_order_steps):
               v(s.jib_tip_displacement) + v(s.trolley) +
               [s.rope_top_tension, s.rope_length, s.slew_angle, s.trolley_radius, s.energy,
                s.constraint_error, s.subdomains, s.tension_ratio, s.load_chart_ratio,
-               s.warnings, full_order_steps, int(s.payload_landed), s.contact_force])
+               s.warnings, full_order_steps, int(s.payload_landed), s.contact_force] +
+              list(getattr(s, "stresses", [])))
     return ",".join(repr(float(x)) if not isinstance(x, int) else str(x) for x in values)
 
 
@@ -64,7 +65,9 @@ def main():
     states.sort(key=lambda s: s[0].t)
     if a.series:
         with open(a.series, "w") as f:
-            f.write(COLUMNS + "\n")
+            # The hot spots' stresses after contact_force, as crane_sim run writes them.
+            names = list(getattr(states[0][0], "stress_names", []))
+            f.write(COLUMNS + "".join(",stress_" + n for n in names) + "\n")
             for s, steps in states:
                 f.write(row(s, steps) + "\n")
     states = [s for s, _ in states]

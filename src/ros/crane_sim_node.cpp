@@ -480,6 +480,10 @@ void CraneSimNode::publish() {
   if (const std::optional<bool> landed = twin_->loadCellLanded()) {
     last_state_.payload_landed = *landed;
   }
+  last_state_.stress_names.clear();
+  if (model_.hot_spots) {
+    for (const HotSpotRow& r : model_.hot_spots->rows) last_state_.stress_names.push_back(r.name);
+  }
   last_state_.lift_offs = lift_off_.liftOffs();
   last_state_.lift_off_factor = lift_off_.factor();
   state_pub_.publish(last_state_);

@@ -208,6 +208,7 @@ CraneState toStateMessage(const CraneSnapshot& s, const ros::Time& stamp, double
   m.model = model;
   m.payload_landed = v.payload_landed;
   m.contact_force = v.contact_force;
+  m.stresses = v.stresses;
   return m;
 }
 

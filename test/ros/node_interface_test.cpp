@@ -221,6 +221,12 @@ TEST(CraneSimNode, BadCommandsAreRejectedAndTheNodeLivesOn) {
   EXPECT_EQ(s.trolley_speed, 0.0);
   EXPECT_EQ(s.slew_rate, 0.0);
   EXPECT_NEAR(s.trolley_radius, 80.0, 1e-12);
+  // The T8036's hot spots (docs/fatigue.md): named, finite, the mast foot's chord pushed.
+  ASSERT_EQ(s.stress_names.size(), 4u);
+  ASSERT_EQ(s.stresses.size(), 4u);
+  EXPECT_EQ(s.stress_names[0], "mast_foot");
+  for (double sigma : s.stresses) EXPECT_TRUE(std::isfinite(sigma));
+  EXPECT_LT(s.stresses[0], 0.0);
   ASSERT_TRUE(waitFor(
       [] {
         std::lock_guard<std::mutex> l(rec->m);
