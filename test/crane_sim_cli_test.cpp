@@ -574,3 +574,30 @@ TEST(CraneSimCli, T8036HotSpotStressesReachStaticAndTheRunsColumns) {
   ASSERT_EQ(g.status, 0) << g.out;
   EXPECT_EQ(g.out.find("stress_"), std::string::npos) << g.out;
 }
+
+TEST(CraneSimCli, RunPrintsTheUsageBlockBeforeTheSummary) {
+  // A lift-off on the T8036 (docs/cli.md "The usage block"): one lift of the scene's 3.6 t,
+  // k_Q = (3600 / 12500)^3, four hot spots, the summary still last.
+  const std::string scene =
+      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_lift_off_slow.yaml";
+  const Result r = run("run " + scene + " --set rope.elements=20 --set duration=8 --quiet");
+  ASSERT_EQ(r.status, 0) << r.out;
+  const std::vector<std::string> l = lines(r.out);
+  ASSERT_GE(l.size(), 7u);
+  EXPECT_EQ(l.back().rfind("summary: ", 0), 0u) << l.back();
+  std::size_t at = l.size();
+  for (std::size_t i = 0; i < l.size(); ++i)
+    if (l[i].rfind("usage: ", 0) == 0) at = i;
+  ASSERT_LT(at, l.size()) << r.out;
+  double hours = 0.0, kq = 0.0;
+  int lifts = 0;
+  ASSERT_EQ(std::sscanf(l[at].c_str(), "usage: hours=%lf lifts=%d k_Q=%lf", &hours, &lifts, &kq), 3)
+      << l[at];
+  EXPECT_EQ(lifts, 1);
+  EXPECT_NEAR(hours, 8.0 / 3600.0, 1e-6);
+  EXPECT_NEAR(kq, std::pow(3600.0 / 12500.0, 3), 1e-5);
+  EXPECT_EQ(l[at + 1].rfind("usage_lift: lift_off_s=", 0), 0u) << l[at + 1];
+  for (std::size_t i = at + 2; i < at + 6; ++i) {
+    EXPECT_EQ(l[i].rfind("usage_hot_spot: name=", 0), 0u) << l[i];
+  }
+}

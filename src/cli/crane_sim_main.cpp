@@ -16,6 +16,7 @@
 #include "crane_twin/analysis/accuracy_sweep.hpp"
 #include "crane_twin/analysis/rainflow.hpp"
 #include "crane_twin/analysis/trajectory_compare.hpp"
+#include "crane_twin/analysis/usage_counter.hpp"
 #include "crane_twin/io/config_reader.hpp"
 #include "crane_twin/io/csv_columns.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
@@ -134,6 +135,19 @@ std::ofstream openOutput(const std::string& path, const char* option) {
   return f;
 }
 
+// The usage block (docs/cli.md, docs/fatigue.md "Usage"), before the summary line.
+void printUsage(const ct::UsageReport& u) {
+  std::printf("usage: hours=%.6g lifts=%zu k_Q=%.6g\n", u.hours, u.lifts.size(), u.k_q);
+  for (const ct::LiftRecord& l : u.lifts) {
+    std::printf("usage_lift: lift_off_s=%.3f set_down_s=%.3f mass_kg=%g phi_2=%.4g\n", l.lift_off,
+                l.set_down, l.mass, l.dynamic_factor);
+  }
+  for (const ct::HotSpotUsage& h : u.hot_spots) {
+    std::printf("usage_hot_spot: name=%s damage=%.6g damage_per_h=%.6g hours_to_d1=%.6g\n",
+                h.name.c_str(), h.damage, h.damage_per_hour, h.hours_to_failure);
+  }
+}
+
 int runRun(const SceneArgs& a, const RunArgs& r) {
   const ct::CraneModel m = ct::buildCraneModel(ct::loadScene(a.scene, a.sets));
   const std::unique_ptr<ct::Simulation> sim = ct::makeSimulation(m);
@@ -150,9 +164,11 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   // the output rows that carried it at the end; the CSV carries them in every row.
   std::map<int, long> warned;
   ct::LiftOffMonitor lift_off;
+  ct::UsageCounter usage(m);
   auto emit = [&]() {
     ct::SeriesValues v = sim->series();
     lift_off.observe(v, ct::staticTopTension(m, v.rope_length));
+    usage.observe(v, lift_off);
     v.warnings |= lift_off.warningFor(sc.hoist_design_phi2);
     if (series) ct::writeSeriesRow(series, v);
     if (nodes) sim->writeNodeRows(nodes);
@@ -203,6 +219,7 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
     rows_per_bit +=
         (rows_per_bit.empty() ? "" : ",") + std::to_string(bit) + ":" + std::to_string(rows);
   }
+  printUsage(usage.report());
   std::printf(
       "summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=%d mode_updates_s=%.3g "
       "hand_overs=%ld full_order_steps=%ld warnings_seen=%d warning_rows=%s "
