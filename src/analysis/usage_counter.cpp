@@ -18,21 +18,25 @@ UsageCounter::UsageCounter(const CraneModel& model)
   turning_.resize(names_.size());
 }
 
-void UsageCounter::observe(const SeriesValues& row, const LiftOffMonitor& lift_off) {
-  if (std::isnan(t0_)) t0_ = row.t;
-  t_ = row.t;
+void UsageCounter::observe(const SeriesValues& row, const LiftOffMonitor& lift_off,
+                           double time_offset) {
+  const double t = row.t + time_offset;
+  if (std::isnan(t0_)) t0_ = t;
+  t_ = t;
   // A new lift when the monitor confirms one; its factor grows over the monitor's window.
-  if (static_cast<int>(lifts_.size()) < lift_off.liftOffs()) {
+  if (lift_off.liftOffs() < seen_lift_offs_) seen_lift_offs_ = 0;  // a new monitor
+  if (lift_off.liftOffs() > seen_lift_offs_) {
     LiftRecord l;
-    l.lift_off = lift_off.lastLiftOffTime();
+    l.lift_off = lift_off.lastLiftOffTime() + time_offset;
     l.mass = payload_mass_;
     lifts_.push_back(l);
   }
+  seen_lift_offs_ = lift_off.liftOffs();
   if (!lifts_.empty()) {
     LiftRecord& l = lifts_.back();
     if (std::isnan(l.set_down)) {
       l.dynamic_factor = lift_off.lastFactor();
-      if (row.payload_landed && row.t > l.lift_off) l.set_down = row.t;
+      if (row.payload_landed && t > l.lift_off) l.set_down = t;
     }
   }
   // Turning points as they come (the history itself is not kept).
@@ -46,6 +50,11 @@ void UsageCounter::observe(const SeriesValues& row, const LiftOffMonitor& lift_o
       p.push_back(x);
     }
   }
+}
+
+void UsageCounter::setPayloadMass(double mass) {
+  payload_mass_ = mass;
+  if (!lifts_.empty() && std::isnan(lifts_.back().set_down)) lifts_.back().mass = mass;
 }
 
 UsageReport UsageCounter::report() const {

@@ -70,6 +70,7 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("crane/rope", 200);
   applied_pub_ = nh_.advertise<CraneCommand>("crane/command_applied", 50, true);
   diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 5);
+  usage_pub_ = nh_.advertise<CraneUsage>("crane/usage", 5, true);
   if (settings_.publish_clock) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   static_tf_.sendTransform(toBaseTransform(frames_, base, yaw, ros::Time::now()));
   command_sub_ = nh_.subscribe("crane/command", 20, &CraneSimNode::onCommand, this);
@@ -127,6 +128,7 @@ void CraneSimNode::loadReplay() {
 
 void CraneSimNode::resetSimulation() {
   t_offset_ = 0.0;
+  usage_ = std::make_unique<UsageCounter>(model_);
   restartSimulation();
   replay_.assign(replay_all_.begin(), replay_all_.end());
   stamp_origin_ =
@@ -360,6 +362,7 @@ bool CraneSimNode::onSetPayload(SetPayload::Request& req, SetPayload::Response& 
     res.message = std::string("refused: ") + e.what();
     return true;
   }
+  usage_->setPayloadMass(req.mass);
   ROS_INFO("crane_sim_node: payload set to %g kg at t = %g s", req.mass, t_offset_);
   res.success = true;
   res.message = "payload " + std::to_string(req.mass) +
@@ -376,6 +379,7 @@ void CraneSimNode::takeMeasuredPayload(double mass) {
     model_ = std::move(m);
     sim_ = std::move(next);
     twin_->loadChanged(model_);
+    usage_->setPayloadMass(mass);
     ROS_INFO("crane_sim_node (twin): the load cell finds %.0f kg lifted (was %.0f kg) at t = %g s",
              mass, from, t_offset_ + sim_->time());
   } catch (const std::exception& e) {  // a model that cannot continue with another load
@@ -455,7 +459,13 @@ void CraneSimNode::publish() {
       (now - last_structure_wall_).toSec() >= 1.0 / settings_.structure_marker_rate;
   if (options.structure_segments) last_structure_wall_ = now;
   CraneSnapshot s = snapshotOf(*sim_, options);
+  // A twin reading a load cell: landed as the load cell sees it, for crane/state, the lift-offs
+  // and the usage (its own load may bounce where the real one does not; docs/twin.md).
+  if (const std::optional<bool> landed = twin_->loadCellLanded()) {
+    s.series.payload_landed = *landed;
+  }
   lift_off_.observe(s.series, staticTopTension(model_, s.series.rope_length));
+  usage_->observe(s.series, lift_off_, t_offset_);  // at the publication rate
   s.series.warnings |= lift_off_.warningFor(model_.scene.hoist_design_phi2);
   warnings_seen_ |= s.series.warnings;
   last_wind_3s_ = s.series.wind_3s;
@@ -476,10 +486,6 @@ void CraneSimNode::publish() {
   last_state_ = toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model, frames_);
   last_state_.t += t_offset_;
   last_state_.payload_mass_estimate = model_.scene.payload_mass;
-  // A twin reading a load cell: landed as the load cell sees it (docs/twin.md).
-  if (const std::optional<bool> landed = twin_->loadCellLanded()) {
-    last_state_.payload_landed = *landed;
-  }
   last_state_.stress_names.clear();
   if (model_.hot_spots) {
     for (const HotSpotRow& r : model_.hot_spots->rows) last_state_.stress_names.push_back(r.name);
@@ -527,6 +533,7 @@ void CraneSimNode::publishPaused() {
 }
 
 void CraneSimNode::publishDiagnostics() {
+  usage_pub_.publish(toUsageMessage(usage_->report(), stamp(sim_->time())));
   diagnostic_msgs::DiagnosticArray a;
   a.header.stamp = stamp(sim_->time());
   diagnostic_msgs::DiagnosticStatus d;

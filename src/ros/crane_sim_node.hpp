@@ -21,6 +21,7 @@
 #include "crane_twin/CraneCommand.h"
 #include "crane_twin/SetPayload.h"
 #include "crane_twin/analysis/crane_snapshot.hpp"
+#include "crane_twin/analysis/usage_counter.hpp"
 #include "crane_twin/drives/command_guard.hpp"
 #include "crane_twin/drives/trajectory_follower.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
@@ -68,6 +69,9 @@ class CraneSimNode {
   std::vector<double> follower_t_;  ///< latest simulated time of each clock follower [s]
   CraneState last_state_;           ///< the last crane/state published
   LiftOffMonitor lift_off_;         ///< lift-offs and their dynamic factor (crane/state)
+  /// What the run has cost the crane since the start or ~reset (crane/usage, 1 Hz).
+  std::unique_ptr<UsageCounter> usage_;
+  ros::Publisher usage_pub_;
   /// While paused under simulated time: TF stamps step by 1 ns a publication past the frozen
   /// clock (tf2 drops a transform whose stamp repeats).
   ros::Duration tf_stamp_offset_;

@@ -212,4 +212,23 @@ CraneState toStateMessage(const CraneSnapshot& s, const ros::Time& stamp, double
   return m;
 }
 
+CraneUsage toUsageMessage(const UsageReport& u, const ros::Time& stamp) {
+  CraneUsage m;
+  m.header.stamp = stamp;
+  m.hours = u.hours;
+  m.lifts = static_cast<int>(u.lifts.size());
+  m.k_q = u.k_q;
+  for (const LiftRecord& l : u.lifts) {
+    m.lift_masses.push_back(l.mass);
+    m.lift_factors.push_back(l.dynamic_factor);
+  }
+  for (const HotSpotUsage& h : u.hot_spots) {
+    m.hot_spots.push_back(h.name);
+    m.damage.push_back(h.damage);
+    m.damage_per_hour.push_back(h.damage_per_hour);
+    m.hours_to_failure.push_back(h.hours_to_failure);
+  }
+  return m;
+}
+
 }  // namespace crane_twin

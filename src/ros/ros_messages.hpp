@@ -11,8 +11,10 @@
 #include <vector>
 
 #include "crane_twin/CraneState.h"
+#include "crane_twin/CraneUsage.h"
 #include "crane_twin/analysis/crane_snapshot.hpp"
 #include "crane_twin/analysis/load_shapes.hpp"
+#include "crane_twin/analysis/usage_counter.hpp"
 
 namespace crane_twin {
 
@@ -58,6 +60,9 @@ visualization_msgs::MarkerArray toMarkers(const CraneSnapshot& s, const ros::Tim
                                           const CraneFrames& f = {},
                                           std::optional<double> ground_height = std::nullopt);
 /// The docs/cli.md row with the step cost [s] and real-time factor (frame <prefix>base).
+/// crane/usage (docs/ros.md, docs/fatigue.md "Usage").
+CraneUsage toUsageMessage(const UsageReport& u, const ros::Time& stamp);
+
 CraneState toStateMessage(const CraneSnapshot& s, const ros::Time& stamp, double step_cost,
                           double real_time_factor, const std::string& model,
                           const CraneFrames& f = {});

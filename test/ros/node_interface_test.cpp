@@ -6,6 +6,7 @@
 #include <geometry_msgs/Vector3Stamped.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <ros/topic.h>
 #include <sensor_msgs/JointState.h>
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
@@ -22,6 +23,7 @@
 
 #include "crane_twin/CraneCommand.h"
 #include "crane_twin/CraneState.h"
+#include "crane_twin/CraneUsage.h"
 #include "subscribe.hpp"
 
 namespace {
@@ -113,6 +115,28 @@ TEST(CraneSimNode, PublishesJointsWithTheRopeTension) {
   // 2 falls x 1.9 kg/m x 60 m) g, give or take the 2.3 deg swing's dynamic part.
   const double weight = (3600.0 + 2044.0 + 2 * 1.9 * 60.0) * 9.81;
   EXPECT_NEAR(j.effort[2], weight, 0.05 * weight);
+}
+
+TEST(CraneSimNode, PublishesItsUsage) {
+  // crane/usage (docs/fatigue.md "Usage"): the T8036's four hot spots with a damage that grows
+  // as the run goes on; no lift on the live scene (its load hangs from the start).
+  ros::NodeHandle nh;
+  const auto first =
+      ros::topic::waitForMessage<crane_twin::CraneUsage>("/crane/usage", nh, ros::Duration(10.0));
+  ASSERT_TRUE(first) << "no crane/usage";
+  ros::WallDuration(2.5).sleep();
+  const auto later =
+      ros::topic::waitForMessage<crane_twin::CraneUsage>("/crane/usage", nh, ros::Duration(5.0));
+  ASSERT_TRUE(later);
+  ASSERT_EQ(later->hot_spots.size(), 4u);
+  ASSERT_EQ(later->damage.size(), 4u);
+  EXPECT_EQ(later->hot_spots[0], "mast_foot");
+  EXPECT_GT(later->hours, first->hours);
+  EXPECT_EQ(later->lifts, 0);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_TRUE(std::isfinite(later->damage[i]));
+    EXPECT_GE(later->damage[i], 0.0);
+  }
 }
 
 TEST(CraneSimNode, TfTreeIsComplete) {

@@ -7,7 +7,8 @@ behind real time stamps its states with its own simulated time, earlier than the
 - the real crane's load leaves the ground (its crane/state payload_landed goes 0);
 - 10 s later the twin's crane/state payload_mass_estimate is within 3 % of 4000 kg, and a
   forecast made after the twin took the estimate arrives (the forecaster runs with it);
-- the real crane sets the load down; the twin's payload_landed is 1 within 1 s of it.
+- the real crane sets the load down; the twin's payload_landed is 1 within 1 s of it;
+- the twin's crane/usage counts one lift, of the mass its load cell found (within 3 % of 4 t).
 """
 import sys
 import threading
@@ -18,7 +19,7 @@ import rospy
 import rostest
 from nav_msgs.msg import Path
 
-from crane_twin.msg import CraneState
+from crane_twin.msg import CraneState, CraneUsage
 
 REAL_MASS = 4000.0
 
@@ -33,6 +34,12 @@ class Recorder:
         rospy.Subscriber("/real/crane/state", CraneState, self.on_real, queue_size=500)
         rospy.Subscriber("/crane/state", CraneState, self.on_twin, queue_size=500)
         rospy.Subscriber("/crane/forecast", Path, self.on_forecast, queue_size=20)
+        self.usage = None
+        rospy.Subscriber("/crane/usage", CraneUsage, self.on_usage, queue_size=5)
+
+    def on_usage(self, m):
+        with self.lock:
+            self.usage = m
 
     def on_real(self, m):
         with self.lock:
@@ -107,6 +114,13 @@ class TwinFollowsPicks(unittest.TestCase):
             (seen[0], seen[0] - set_down))
         self.assertLess(seen[0] - set_down, 1.0)
         self.assertGreater(seen[0] - set_down, -0.2)
+        with rec.lock:
+            usage = rec.usage
+        self.assertIsNotNone(usage, "no crane/usage from the twin")
+        say("twin's usage: %d lift(s) of %s kg, phi_2 %s" %
+            (usage.lifts, list(usage.lift_masses), list(usage.lift_factors)))
+        self.assertEqual(usage.lifts, 1)
+        self.assertLess(abs(usage.lift_masses[0] - REAL_MASS), 0.03 * REAL_MASS)
 
 
 if __name__ == "__main__":

@@ -42,8 +42,13 @@ class UsageCounter {
  public:
   /// The payload mass and the hot spots of `model`; m_max from its crane file (none: k_Q 0).
   explicit UsageCounter(const CraneModel& model);
-  /// One output row, after `lift_off` observed it.
-  void observe(const SeriesValues& row, const LiftOffMonitor& lift_off);
+  /// One output row, after `lift_off` observed it. `time_offset` [s] is added to the row's and
+  /// the monitor's times (a node's simulation that started again after a load change: its
+  /// monitor's count starts again from 0 too); the times so shifted must not go back.
+  void observe(const SeriesValues& row, const LiftOffMonitor& lift_off, double time_offset = 0.0);
+  /// The payload from now on [kg] (~set_payload, or a twin's load cell), the lift under way
+  /// included.
+  void setPayloadMass(double mass);
   UsageReport report() const;
 
  private:
@@ -52,6 +57,7 @@ class UsageCounter {
   std::vector<double> categories_;
   std::vector<std::vector<double>> turning_;  ///< per hot spot: turning points so far [Pa]
   std::vector<LiftRecord> lifts_;
+  int seen_lift_offs_ = 0;  ///< the monitor's count at the last row
   double t0_ = std::numeric_limits<double>::quiet_NaN(), t_ = 0.0;
 };
 
