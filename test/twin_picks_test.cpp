@@ -129,6 +129,27 @@ TEST(LoadCellMonitor, ASetDownIsSeenAfterItsConfirmationAndAShortDipIsNot) {
   EXPECT_NEAR(seen, 5.2, 1e-9);
 }
 
+TEST(LoadCellMonitor, ALoweredLoadIsSetDownAtItsFirstSlackSample) {
+  // Lowered at 0.3 m/s, the load lands at t = 3: one sample under a quarter of the weight, then
+  // the jib springs back and pulls the rope to 80 % for 1 s (as after the T8036's set-downs),
+  // then slack: seen at the first slack sample (while reeling in it would need 0.2 s).
+  LoadCellMonitor m;
+  const double w = 3000.0 * 9.81;
+  double seen = NAN;
+  for (int k = 0; k <= 60; ++k) {
+    const double t = 0.1 * k;
+    double e = w;
+    if (k == 30) e = 0.1 * w;
+    if (k > 30 && k <= 40) e = 0.8 * w;
+    if (k > 40) e = 0.05 * w;
+    m.add(sample(t, e, e, 3000.0, k >= 30, 30.0 + 0.3 * t));
+    if (m.landed() && std::isnan(seen)) seen = t;
+  }
+  EXPECT_NEAR(seen, 3.0, 1e-9);
+  EXPECT_EQ(m.setDowns(), 1);
+  EXPECT_EQ(m.lifts(), 0);  // the rebound is no lift (the hoist paid out)
+}
+
 TEST(LoadCellMonitor, OnlyTheHoistLiftsALandedLoad) {
   // Set down at t = 1 while lowering; then, the hoist still paying out, the jib's rebound pulls
   // the rope to 80 % of the load's weight for 1.5 s: no lift-off. Reeled in from t = 5 (and

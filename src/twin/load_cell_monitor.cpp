@@ -59,7 +59,12 @@ void LoadCellMonitor::add(const LoadCellSample& s) {
     switch_since_ = std::numeric_limits<double>::quiet_NaN();
   } else {
     if (std::isnan(switch_since_)) switch_since_ = s.t;
-    const double hold = landed_ ? settings_.lift_confirm : settings_.set_down_confirm;
+    // A hanging load's tension falls under a quarter of its weight while the hoist pays out
+    // only when it lands: then at once (the jib springing back may pull the rope up again
+    // within the confirmation time, for a period of the jib, about 2 s).
+    const bool lowering = !std::isnan(last_hoist_) && s.hoist_length > last_hoist_;
+    const double hold =
+        landed_ ? settings_.lift_confirm : (lowering ? 0.0 : settings_.set_down_confirm);
     if (s.t - switch_since_ >= hold - kTimeTolerance) {
       landed_ = !landed_;
       if (landed_) {
@@ -76,6 +81,7 @@ void LoadCellMonitor::add(const LoadCellSample& s) {
       switch_since_ = std::numeric_limits<double>::quiet_NaN();
     }
   }
+  last_hoist_ = s.hoist_length;
   // The mass windows: the load hanging in both, the twin's end mass unchanged.
   if (landed_ || s.twin_landed || s.t < windows_from_) {
     window_start_ = std::numeric_limits<double>::quiet_NaN();

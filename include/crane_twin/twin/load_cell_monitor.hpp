@@ -12,8 +12,10 @@
 //   its time is the first sample above. Only the hoist lifts a load: after a set-down the jib
 //   springs back and rings (0.1 to 0.8 Hz), and its pull on the landed load's rope can exceed
 //   half the load's weight for more than half a second while the hoist pays out.
-//   Set-down: E below set_down_fraction m_e g for set_down_confirm seconds. The first sample
-//   decides between the two by the lift threshold.
+//   Set-down: E below set_down_fraction m_e g for set_down_confirm seconds, or at once while
+//   the hoist pays out (a lowered load's rope slackens only when it lands, and the jib springing
+//   back can pull it up again within the confirmation). The first sample decides between the
+//   two by the lift threshold.
 // - Mass: from `settle` seconds after a lift-off, over windows of `window` seconds in which the
 //   load hangs in the measurement and in the twin,
 //       m_e,measured = m_e,twin * sum w E_measured / sum w E_twin,
@@ -93,6 +95,7 @@ class LoadCellMonitor {
   double last_lift_off_ = std::numeric_limits<double>::quiet_NaN();
   double last_set_down_ = std::numeric_limits<double>::quiet_NaN();
   double longest_hoist_ = -std::numeric_limits<double>::infinity();  ///< since landed
+  double last_hoist_ = std::numeric_limits<double>::quiet_NaN();     ///< previous sample's
   double windows_from_ = std::numeric_limits<double>::infinity();    ///< no window before this
   double window_start_ = std::numeric_limits<double>::quiet_NaN();   ///< NaN: none open
   double window_mass_ = 0.0, sum_measured_ = 0.0, sum_twin_ = 0.0;
