@@ -21,25 +21,54 @@ std::vector<double> turningPoints(const std::vector<double>& history) {
   return p;
 }
 
-std::vector<RainflowCycle> rainflowCount(const std::vector<double>& history) {
+void RainflowCounter::closeCycles(std::vector<double>& s, std::vector<RainflowCycle>& closed) {
+  while (s.size() >= 4) {
+    const std::size_t n = s.size();
+    const double d1 = std::abs(s[n - 3] - s[n - 4]);
+    const double d2 = std::abs(s[n - 2] - s[n - 3]);
+    const double d3 = std::abs(s[n - 1] - s[n - 2]);
+    if (!(d2 <= d1 && d2 <= d3)) break;
+    closed.push_back({d2, 0.5 * (s[n - 2] + s[n - 3]), 1.0});
+    s.erase(s.end() - 3, s.end() - 1);
+  }
+}
+
+void RainflowCounter::add(double x, std::vector<RainflowCycle>& closed) {
+  if (!std::isfinite(x)) throw std::invalid_argument("rainflow: a value is not finite");
+  if (pending_.empty()) {
+    pending_.push_back(x);  // the history's first value is a turning point
+    return;
+  }
+  if (x == pending_.back()) return;  // a plateau counts once
+  if (pending_.size() == 2 && (pending_[1] - pending_[0]) * (x - pending_[1]) > 0.0) {
+    pending_[1] = x;  // the run goes on: the last point moves with it
+    return;
+  }
+  // The history turned: its last point is a turning point.
+  stack_.push_back(pending_.back());
+  closeCycles(stack_, closed);
+  pending_ = {pending_.back(), x};
+}
+
+std::vector<RainflowCycle> RainflowCounter::finish() const {
   std::vector<RainflowCycle> cycles;
-  std::vector<double> s;  // the points not yet counted
-  for (double x : turningPoints(history)) {
-    s.push_back(x);
-    // Four-point rule on the newest four, repeated while it closes a cycle.
-    while (s.size() >= 4) {
-      const std::size_t n = s.size();
-      const double d1 = std::abs(s[n - 3] - s[n - 4]);
-      const double d2 = std::abs(s[n - 2] - s[n - 3]);
-      const double d3 = std::abs(s[n - 1] - s[n - 2]);
-      if (!(d2 <= d1 && d2 <= d3)) break;
-      cycles.push_back({d2, 0.5 * (s[n - 2] + s[n - 3]), 1.0});
-      s.erase(s.end() - 3, s.end() - 1);
-    }
+  std::vector<double> s = stack_;
+  if (!pending_.empty()) {
+    s.push_back(pending_.back());  // the last value is a turning point
+    closeCycles(s, cycles);
   }
   for (std::size_t i = 0; i + 1 < s.size(); ++i) {  // the residue: half cycles
     cycles.push_back({std::abs(s[i + 1] - s[i]), 0.5 * (s[i] + s[i + 1]), 0.5});
   }
+  return cycles;
+}
+
+std::vector<RainflowCycle> rainflowCount(const std::vector<double>& history) {
+  RainflowCounter counter;
+  std::vector<RainflowCycle> cycles;
+  for (double x : history) counter.add(x, cycles);
+  const std::vector<RainflowCycle> rest = counter.finish();
+  cycles.insert(cycles.end(), rest.begin(), rest.end());
   return cycles;
 }
 

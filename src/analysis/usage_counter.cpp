@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include "crane_twin/analysis/rainflow.hpp"
-
 namespace crane_twin {
 
 UsageCounter::UsageCounter(const CraneModel& model)
@@ -12,10 +10,11 @@ UsageCounter::UsageCounter(const CraneModel& model)
   if (model.hot_spots) {
     for (const HotSpotRow& r : model.hot_spots->rows) {
       names_.push_back(r.name);
-      categories_.push_back(r.detail_category);
+      curves_.push_back(SnCurve{r.detail_category, 1.0});
     }
   }
-  turning_.resize(names_.size());
+  counters_.resize(names_.size());
+  closed_damage_.assign(names_.size(), 0.0);
 }
 
 void UsageCounter::observe(const SeriesValues& row, const LiftOffMonitor& lift_off,
@@ -39,16 +38,12 @@ void UsageCounter::observe(const SeriesValues& row, const LiftOffMonitor& lift_o
       if (row.payload_landed && t > l.lift_off) l.set_down = t;
     }
   }
-  // Turning points as they come (the history itself is not kept).
-  for (std::size_t i = 0; i < turning_.size() && i < row.stresses.size(); ++i) {
-    std::vector<double>& p = turning_[i];
-    const double x = row.stresses[i];
-    if (!p.empty() && x == p.back()) continue;
-    if (p.size() >= 2 && (p.back() - p[p.size() - 2]) * (x - p.back()) > 0.0) {
-      p.back() = x;
-    } else {
-      p.push_back(x);
-    }
+  // Each hot spot's cycles as they close (the history itself is not kept).
+  std::vector<RainflowCycle> closed;
+  for (std::size_t i = 0; i < counters_.size() && i < row.stresses.size(); ++i) {
+    closed.clear();
+    counters_[i].add(row.stresses[i], closed);
+    closed_damage_[i] += minerDamage(closed, curves_[i]);
   }
 }
 
@@ -69,7 +64,7 @@ UsageReport UsageCounter::report() const {
   for (std::size_t i = 0; i < names_.size(); ++i) {
     HotSpotUsage u;
     u.name = names_[i];
-    u.damage = minerDamage(rainflowCount(turning_[i]), SnCurve{categories_[i], 1.0});
+    u.damage = closed_damage_[i] + minerDamage(counters_[i].finish(), curves_[i]);
     if (r.hours > 0.0) {
       u.damage_per_hour = u.damage / r.hours;
       if (u.damage_per_hour > 0.0) u.hours_to_failure = 1.0 / u.damage_per_hour;

@@ -342,8 +342,8 @@ bool CraneSimNode::onSetPayload(SetPayload::Request& req, SetPayload::Response& 
   // The new load hangs in static equilibrium where the crane stands (docs/ros.md): the same
   // model with another load, pose and initial state, its structure not rebuilt (withScene).
   try {
-    CraneModel m = withPayloadMass(model_, req.mass);
-    Scene s = m.scene;
+    Scene s = model_.scene;
+    s.payload_mass = req.mass;
     if (s.crane) {
       s.slew_angle = d.slewAngle();
       s.trolley_radius = d.trolleyRadius();
@@ -353,7 +353,7 @@ bool CraneSimNode::onSetPayload(SetPayload::Request& req, SetPayload::Response& 
     s.swing_deg = 0.0;
     s.payload_velocity = Eigen::Vector3d::Zero();
     s.commands.clear();
-    m = withScene(m, s);
+    CraneModel m = withScene(model_, s);
     const double t = t_offset_ + sim_->time();
     model_ = std::move(m);
     t_offset_ = t;

@@ -121,6 +121,20 @@ CraneModel withScene(const CraneModel& model, const Scene& scene) {
       r.reeving_length != q.reeving_length || scene.hasRigging() != o.hasRigging()) {
     refuse("rope", "the rope's discretisation or section");
   }
+  // The payload as the file's checks would take it (Scene's payload.mass, hook and ground).
+  auto refuseMass = [&scene](const std::string& what) {
+    throw InputError(scene.file + ": key 'payload.mass': " + what);
+  };
+  const double mass = scene.payload_mass;
+  if (!std::isfinite(mass) || mass < 0.0) {
+    refuseMass("must be a finite mass >= 0 [kg], got " + std::to_string(mass));
+  }
+  if (scene.hasRigging() && !(mass > 0.0)) {
+    refuseMass("must be > 0 under a rigging (hook.rigging_length carries the payload)");
+  }
+  if (scene.ground && !(mass + scene.hookBlockMass() > 0.0)) {
+    refuseMass("must be > 0 with ground: and no hook block (something must land)");
+  }
   CraneModel m = model;
   m.scene = scene;
   setRopeAndLoad(m);
@@ -135,20 +149,7 @@ CraneModel withScene(const CraneModel& model, const Scene& scene) {
 }
 
 CraneModel withPayloadMass(const CraneModel& model, double payload_mass) {
-  const Scene& o = model.scene;
-  auto refuse = [&o](const std::string& what) {
-    throw InputError(o.file + ": key 'payload.mass': " + what);
-  };
-  if (!std::isfinite(payload_mass) || payload_mass < 0.0) {
-    refuse("must be a finite mass >= 0 [kg], got " + std::to_string(payload_mass));
-  }
-  if (o.hasRigging() && !(payload_mass > 0.0)) {
-    refuse("must be > 0 under a rigging (hook.rigging_length carries the payload)");
-  }
-  if (o.ground && !(payload_mass + o.hookBlockMass() > 0.0)) {
-    refuse("must be > 0 with ground: and no hook block (something must land)");
-  }
-  Scene s = o;
+  Scene s = model.scene;
   s.payload_mass = payload_mass;
   return withScene(model, s);
 }

@@ -30,6 +30,24 @@ struct RainflowCycle {
 /// between (a plateau counts once). Throws std::invalid_argument for a non-finite value.
 std::vector<double> turningPoints(const std::vector<double>& history);
 
+/// The counting above as the history comes, one value at a time: only the pending turning
+/// point and the points not yet counted are kept (a node counting for hours keeps no history).
+class RainflowCounter {
+ public:
+  /// The history's next value; the cycles it closes are appended to `closed`. Throws
+  /// std::invalid_argument for a non-finite value.
+  void add(double x, std::vector<RainflowCycle>& closed);
+  /// What the history so far still holds were it to end now: the cycles its last value closes,
+  /// then the residue's half cycles. The counter is unchanged.
+  std::vector<RainflowCycle> finish() const;
+
+ private:
+  /// Four-point rule on the newest four of `s`, repeated while it closes a cycle.
+  static void closeCycles(std::vector<double>& s, std::vector<RainflowCycle>& closed);
+  std::vector<double> stack_;    ///< turning points not yet counted
+  std::vector<double> pending_;  ///< the last one or two values: a turning point once it turns
+};
+
 /// The cycles of `history` (see above): the closed cycles in the order they close, then the
 /// residue's half cycles from its start. Empty for a history without two turning points.
 /// Throws std::invalid_argument for a non-finite value.

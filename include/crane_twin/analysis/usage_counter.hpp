@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "crane_twin/analysis/rainflow.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/simulation/lift_off_monitor.hpp"
 #include "crane_twin/simulation/simulation.hpp"
@@ -54,8 +55,11 @@ class UsageCounter {
  private:
   double payload_mass_ = 0.0, max_load_ = 0.0;
   std::vector<std::string> names_;
-  std::vector<double> categories_;
-  std::vector<std::vector<double>> turning_;  ///< per hot spot: turning points so far [Pa]
+  std::vector<SnCurve> curves_;
+  /// Per hot spot: its stress history counted as it comes [Pa], and the Miner sum of the
+  /// cycles closed so far (the rest when a report asks).
+  std::vector<RainflowCounter> counters_;
+  std::vector<double> closed_damage_;
   std::vector<LiftRecord> lifts_;
   int seen_lift_offs_ = 0;  ///< the monitor's count at the last row
   double t0_ = std::numeric_limits<double>::quiet_NaN(), t_ = 0.0;

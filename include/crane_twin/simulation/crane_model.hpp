@@ -91,14 +91,14 @@ CraneModel buildCraneModel(const Scene& scene);
 /// commands): the structure's matrices are reused, not rebuilt, and with
 /// structure.geometric_stiffness K_G is recomputed for the new hanging load
 /// (K + K_G(N_new) = (K + K_G(N_old)) - K_G(N_old) + K_G(N_new), K_G linear in N).
-/// Throws InputError naming the key for another crane, structure or rope discretisation, and
-/// what buildCraneModel refuses.
+/// Throws InputError naming the key for another crane, structure or rope discretisation, a
+/// payload.mass that is not finite and >= 0 (> 0 under a rigging, or with `ground:` and no hook
+/// block), and what buildCraneModel refuses.
 CraneModel withScene(const CraneModel& model, const Scene& scene);
 
 /// The model with another payload mass [kg] (a load picked up, or the twin's estimate of it;
 /// docs/twin.md "Picks and set-downs"), everything else kept, payload.height included.
-/// Throws InputError naming payload.mass for a mass that is not finite and >= 0, 0 under a
-/// rigging, or no load at all with `ground:`.
+/// Throws what withScene throws (payload.mass named).
 CraneModel withPayloadMass(const CraneModel& model, double payload_mass);
 
 /// The scene's ground under the payload (docs/model.md "Ground contact"): `ground:`'s height,
