@@ -9,6 +9,9 @@
       run one expanded line with crane_sim and print its CSV row (no header).
   campaign.py header
       the CSV header.
+  campaign.py summary RESULTS.csv
+      the usage over every run of RESULTS.csv: lifts, k_Q, per hot spot the damage, its rate
+      per simulated hour and the hours to D = 1 at that rate (docs/fatigue.md "Campaigns").
 
 scripts/campaign.sh drives these with GNU parallel on local cores or ssh hosts.
 """
@@ -18,6 +21,7 @@ import io
 import itertools
 import math
 import os
+import random
 import socket
 import subprocess
 import sys
@@ -28,7 +32,8 @@ import yaml
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 COLUMNS = ["id", "scene", "overrides", "exit_status", "wall_s", "sim_s", "max_swing_deg",
-           "max_tension_ratio", "max_load_chart_ratio", "warnings", "message", "host"]
+           "max_tension_ratio", "max_load_chart_ratio", "warnings", "lifts", "k_q", "max_phi_2",
+           "damage", "message", "host"]
 
 
 class CampaignError(Exception):
@@ -67,7 +72,7 @@ def expand(campaign_file):
         raise CampaignError(f"{campaign_file}: {e}")
     if not isinstance(c, dict):
         raise CampaignError(f"{campaign_file}: must be a map with scenes, set, grid")
-    unknown = set(c) - {"scenes", "set", "grid", "duration"}
+    unknown = set(c) - {"scenes", "set", "grid", "duration", "samples"}
     if unknown:
         raise CampaignError(f"{campaign_file}: unknown key(s) {', '.join(sorted(unknown))}")
     scenes = c.get("scenes")
@@ -85,23 +90,55 @@ def expand(campaign_file):
     if not isinstance(grid, dict) or not all(isinstance(v, list) and v for v in grid.values()):
         raise CampaignError(f"{campaign_file}: 'grid' must map keys to non-empty lists of values")
     keys = list(grid)
+    draws = samples(campaign_file, c.get("samples"))
     runs = []
     for scene in scenes:
         path = scene_path(campaign_file, scene)
         if not os.path.isfile(path):
             raise CampaignError(f"{campaign_file}: scene '{scene}': no file {path}")
         for combo in itertools.product(*(grid[k] for k in keys)):
-            overrides = fixed + [f"{k}={value_text(v)}" for k, v in zip(keys, combo)]
-            key = scene + "\0" + "\0".join(overrides)
-            runs.append((hashlib.sha1(key.encode()).hexdigest()[:12], scene, overrides))
+            for draw in draws:
+                overrides = fixed + [f"{k}={value_text(v)}" for k, v in zip(keys, combo)] + draw
+                key = scene + "\0" + "\0".join(overrides)
+                runs.append((hashlib.sha1(key.encode()).hexdigest()[:12], scene, overrides))
     return runs
 
 
+def samples(campaign_file, spec):
+    """The overrides of each run `samples:` draws (one empty draw without it): `count` runs,
+    each key of `uniform` drawn from its [low, high] with Python's Mersenne Twister seeded by
+    `seed`, 4 significant digits; the same file draws the same runs on every machine."""
+    if spec is None:
+        return [[]]
+    where = f"{campaign_file}: samples"
+    if not isinstance(spec, dict) or set(spec) - {"count", "seed", "uniform"}:
+        raise CampaignError(f"{where}: must be a map with count, seed, uniform")
+    count, seed, uniform = spec.get("count"), spec.get("seed", 1), spec.get("uniform")
+    if not isinstance(count, int) or isinstance(count, bool) or count < 1:
+        raise CampaignError(f"{where}.count: must be a positive integer")
+    if not isinstance(seed, int) or isinstance(seed, bool):
+        raise CampaignError(f"{where}.seed: must be an integer")
+    if not isinstance(uniform, dict) or not uniform:
+        raise CampaignError(f"{where}.uniform: must map scene keys to [low, high]")
+    for k, b in uniform.items():
+        if (not isinstance(b, list) or len(b) != 2
+                or not all(isinstance(x, (int, float)) and not isinstance(x, bool)
+                           and math.isfinite(x) for x in b) or not b[0] < b[1]):
+            raise CampaignError(f"{where}.uniform.{k}: must be [low, high] with low < high")
+    rng = random.Random(seed)
+    return [[f"{k}={float(f'{rng.uniform(b[0], b[1]):.4g}'):g}" for k, b in uniform.items()]
+            for _ in range(count)]
+
+
 def done_ids(results):
-    if not results or not os.path.isfile(results):
+    if not results or not os.path.isfile(results) or os.path.getsize(results) == 0:
         return set()
     with open(results, newline="") as f:
-        return {row["id"] for row in csv.DictReader(f) if row.get("id")}
+        reader = csv.DictReader(f)
+        if reader.fieldnames != COLUMNS:
+            raise CampaignError(f"{results}: its columns are not this campaign.py's (an older "
+                                f"file?): start a new results file")
+        return {row["id"] for row in reader if row.get("id")}
 
 
 def run(line):
@@ -125,7 +162,61 @@ def run(line):
         row["message"] = errors[0] if errors else ""
         if os.path.isfile(out):
             summarise(out, row)
+        usage(p.stdout, row)
     return row
+
+
+def usage(stdout, row):
+    """The usage block of crane_sim run's output (docs/cli.md): lifts, k_Q, the largest phi_2,
+    and each hot spot's damage as blank-separated name=value."""
+    lifts, kq, phi, damage = "", "", 0.0, []
+    for line in stdout.splitlines():
+        head, _, rest = line.partition(": ")
+        fields = dict(f.split("=", 1) for f in rest.split() if "=" in f)
+        if head == "usage":
+            lifts, kq = fields.get("lifts", ""), fields.get("k_Q", "")
+        elif head == "usage_lift":
+            phi = max(phi, float(fields["phi_2"]))
+        elif head == "usage_hot_spot":
+            damage.append(f"{fields['name']}={fields['damage']}")
+    row.update(lifts=lifts, k_q=kq, max_phi_2=f"{phi:.4g}" if lifts else "",
+               damage=" ".join(damage))
+
+
+def summary(results):
+    """Usage over the runs of `results` that finished: lifts, k_Q (lift-weighted), per hot spot
+    the damage summed, per simulated hour, and the hours to D = 1 at that rate."""
+    if not os.path.isfile(results):
+        raise CampaignError(f"{results}: no such file")
+    rows, failed, runs, lifts, kq_sum, hours, damage = 0, 0, 0, 0, 0.0, 0.0, {}
+    with open(results, newline="") as f:
+        reader = csv.DictReader(f)
+        if reader.fieldnames != COLUMNS:
+            raise CampaignError(f"{results}: its columns are not this campaign.py's")
+        for r in reader:
+            rows += 1
+            if r["exit_status"] != "0":
+                failed += 1
+                continue
+            if not r["lifts"]:
+                continue
+            runs += 1
+            n = int(r["lifts"])
+            lifts += n
+            kq_sum += n * float(r["k_q"])
+            hours += float(r["sim_s"]) / 3600.0
+            for pair in r["damage"].split():
+                name, value = pair.split("=", 1)
+                damage[name] = damage.get(name, 0.0) + float(value)
+    lines = [f"campaign: {rows} rows in {results}, {failed} with a non-zero exit status",
+             f"campaign usage: {runs} runs, {hours:.4g} h simulated, {lifts} lifts, "
+             f"k_Q {kq_sum / lifts if lifts else 0.0:.4g}"]
+    for name, d in damage.items():
+        rate = d / hours if hours > 0 else 0.0
+        life = f"{1.0 / rate:.4g}" if rate > 0 else "inf"
+        lines.append(f"campaign usage: {name} damage {d:.4g}, {rate:.4g} per hour, "
+                     f"{life} h to D = 1")
+    return lines
 
 
 def summarise(series_csv, row):
@@ -155,6 +246,8 @@ def main(argv):
             for run_id, scene, overrides in expand(argv[2]):
                 if run_id not in skip:
                     print("\t".join([run_id, scene_path(argv[2], scene)] + overrides))
+        elif len(argv) == 3 and argv[1] == "summary":
+            print("\n".join(summary(argv[2])))
         elif len(argv) == 3 and argv[1] == "run":
             row = run(argv[2])
             buf = io.StringIO()

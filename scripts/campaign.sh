@@ -40,5 +40,5 @@ if [ "$TODO" -gt 0 ]; then
   parallel "${PAR[@]}" --halt never --line-buffer --arg-file "$LINES" --delimiter '\n' \
     "$PY" "$ROOT/scripts/campaign.py" run {} >>"$RESULTS"
 fi
-FAILED=$(awk -F, 'NR > 1 && $4 != 0' "$RESULTS" | wc -l)
-echo "campaign: $(($(wc -l <"$RESULTS") - 1)) rows in $RESULTS, $FAILED with a non-zero exit status" >&2
+# The rows, those with a non-zero exit status, and the usage over the finished runs.
+"$PY" "$ROOT/scripts/campaign.py" summary "$RESULTS" >&2

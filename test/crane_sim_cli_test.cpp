@@ -591,13 +591,29 @@ TEST(CraneSimCli, RunPrintsTheUsageBlockBeforeTheSummary) {
   ASSERT_LT(at, l.size()) << r.out;
   double hours = 0.0, kq = 0.0;
   int lifts = 0;
-  ASSERT_EQ(std::sscanf(l[at].c_str(), "usage: hours=%lf lifts=%d k_Q=%lf", &hours, &lifts, &kq), 3)
+  char u[16] = {}, q[16] = {};
+  ASSERT_EQ(
+      std::sscanf(l[at].c_str(), "usage: hours=%lf lifts=%d k_Q=%lf u_class=%15s q_class=%15s",
+                  &hours, &lifts, &kq, u, q),
+      5)
       << l[at];
   EXPECT_EQ(lifts, 1);
   EXPECT_NEAR(hours, 8.0 / 3600.0, 1e-6);
   EXPECT_NEAR(kq, std::pow(3600.0 / 12500.0, 3), 1e-5);
-  EXPECT_EQ(l[at + 1].rfind("usage_lift: lift_off_s=", 0), 0u) << l[at + 1];
-  for (std::size_t i = at + 2; i < at + 6; ++i) {
+  EXPECT_STREQ(u, "U0");  // 1 lift
+  EXPECT_STREQ(q, "Q0");  // 0.0239 <= 0.0313
+  // The crane file's 20000 design hours at one lift in 8 s: 9e6 lifts, beyond U9's 8e6.
+  double design = 0.0, projected = 0.0;
+  ASSERT_EQ(
+      std::sscanf(l[at + 1].c_str(), "usage_design: design_hours=%lf lifts_in_design_life=%lf",
+                  &design, &projected),
+      2)
+      << l[at + 1];
+  EXPECT_EQ(design, 20000.0);
+  EXPECT_NEAR(projected, 20000.0 * 3600.0 / 8.0, 1e-5 * projected);
+  EXPECT_NE(l[at + 1].find("u_class=above_U9"), std::string::npos) << l[at + 1];
+  EXPECT_EQ(l[at + 2].rfind("usage_lift: lift_off_s=", 0), 0u) << l[at + 2];
+  for (std::size_t i = at + 3; i < at + 7; ++i) {
     EXPECT_EQ(l[i].rfind("usage_hot_spot: name=", 0), 0u) << l[i];
   }
 }

@@ -4,6 +4,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace crane_twin {
 
@@ -30,6 +31,16 @@ void RainflowCounter::closeCycles(std::vector<double>& s, std::vector<RainflowCy
     if (!(d2 <= d1 && d2 <= d3)) break;
     closed.push_back({d2, 0.5 * (s[n - 2] + s[n - 3]), 1.0});
     s.erase(s.end() - 3, s.end() - 1);
+  }
+}
+
+RainflowCounter::RainflowCounter(RainflowState state)
+    : stack_(std::move(state.turning_points)), pending_(std::move(state.pending)) {
+  if (pending_.size() > 2) throw std::invalid_argument("rainflow: more than two pending values");
+  for (const std::vector<double>* v : {&stack_, &pending_}) {
+    for (double x : *v) {
+      if (!std::isfinite(x)) throw std::invalid_argument("rainflow: a value is not finite");
+    }
   }
 }
 

@@ -137,14 +137,21 @@ std::ofstream openOutput(const std::string& path, const char* option) {
 
 // The usage block (docs/cli.md, docs/fatigue.md "Usage"), before the summary line.
 void printUsage(const ct::UsageReport& u) {
-  std::printf("usage: hours=%.6g lifts=%zu k_Q=%.6g\n", u.hours, u.lifts.size(), u.k_q);
+  std::printf("usage: hours=%.6g lifts=%ld k_Q=%.6g u_class=%s q_class=%s\n", u.hours, u.lift_count,
+              u.k_q, u.u_class.c_str(), u.q_class.c_str());
+  if (u.design_hours > 0.0) {
+    std::printf("usage_design: design_hours=%g lifts_in_design_life=%.6g u_class=%s\n",
+                u.design_hours, u.lifts_in_design_life,
+                u.u_class_in_design_life.empty() ? "none" : u.u_class_in_design_life.c_str());
+  }
   for (const ct::LiftRecord& l : u.lifts) {
     std::printf("usage_lift: lift_off_s=%.3f set_down_s=%.3f mass_kg=%g phi_2=%.4g\n", l.lift_off,
                 l.set_down, l.mass, l.dynamic_factor);
   }
   for (const ct::HotSpotUsage& h : u.hot_spots) {
-    std::printf("usage_hot_spot: name=%s damage=%.6g damage_per_h=%.6g hours_to_d1=%.6g\n",
-                h.name.c_str(), h.damage, h.damage_per_hour, h.hours_to_failure);
+    std::printf("usage_hot_spot: name=%s damage=%.6g damage_per_h=%.6g hours_to_d1=%.6g%s\n",
+                h.name.c_str(), h.damage, h.damage_per_hour, h.hours_to_failure,
+                h.short_of_design_life ? " short_of_design_hours=1" : "");
   }
 }
 

@@ -260,6 +260,13 @@ std::vector<double> ConfigNode::numberList(const std::string& key, std::size_t s
   return out;
 }
 
+std::vector<double> ConfigNode::numberList(const std::string& key, Bounds b) {
+  YAML::Node n = scalarOrNull(key);
+  if (!n.IsDefined() || n.IsNull()) return {};
+  if (!n.IsSequence()) fail(key, "must be a list of numbers, got " + shown(n));
+  return numberList(key, n.size(), b);
+}
+
 std::vector<std::string> ConfigNode::stringList(const std::string& key) {
   YAML::Node n = scalarOrNull(key);
   std::vector<std::string> out;

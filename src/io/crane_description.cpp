@@ -118,6 +118,7 @@ CraneDescription loadCraneDescription(const std::string& path) {
     h.finish();
     c.hot_spots.push_back(spot);
   }
+  c.design_hours = root.number("design_hours", 0.0, Bounds::nonNegative());
   {
     ConfigNode m = root.map("trolley", true);
     c.trolley_mass = m.number("trolley_mass", std::nullopt, Bounds::nonNegative());

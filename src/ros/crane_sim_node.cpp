@@ -61,6 +61,7 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   base_yaw_ = yaw;
   twin_ = std::make_unique<TwinAdapter>(nh_, settings_.twin, frames_, base, yaw);
   loadReplay();
+  usage_ = std::make_unique<UsageLink>(nh_, settings_.usage, model_);
   resetSimulation();
   recorder_ =
       std::make_unique<RecorderLink>(nh_, settings_.wait_for_recorder, settings_.recorded_topics);
@@ -70,7 +71,6 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("crane/rope", 200);
   applied_pub_ = nh_.advertise<CraneCommand>("crane/command_applied", 50, true);
   diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 5);
-  usage_pub_ = nh_.advertise<CraneUsage>("crane/usage", 5, true);
   if (settings_.publish_clock) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   static_tf_.sendTransform(toBaseTransform(frames_, base, yaw, ros::Time::now()));
   command_sub_ = nh_.subscribe("crane/command", 20, &CraneSimNode::onCommand, this);
@@ -128,7 +128,7 @@ void CraneSimNode::loadReplay() {
 
 void CraneSimNode::resetSimulation() {
   t_offset_ = 0.0;
-  usage_ = std::make_unique<UsageCounter>(model_);
+  usage_->restart(model_);
   restartSimulation();
   replay_.assign(replay_all_.begin(), replay_all_.end());
   stamp_origin_ =
@@ -533,7 +533,6 @@ void CraneSimNode::publishPaused() {
 }
 
 void CraneSimNode::publishDiagnostics() {
-  usage_pub_.publish(toUsageMessage(usage_->report(), stamp(sim_->time())));
   diagnostic_msgs::DiagnosticArray a;
   a.header.stamp = stamp(sim_->time());
   diagnostic_msgs::DiagnosticStatus d;
@@ -575,6 +574,7 @@ void CraneSimNode::publishDiagnostics() {
   addKeyValue(d, "rope_model", model_.scene.rope.model);
   twin_->diagnose(*sim_, d);
   a.status.push_back(d);
+  usage_->publish(stamp(sim_->time()), ros::this_node::getName(), a);
   diag_pub_.publish(a);
 }
 

@@ -21,7 +21,6 @@
 #include "crane_twin/CraneCommand.h"
 #include "crane_twin/SetPayload.h"
 #include "crane_twin/analysis/crane_snapshot.hpp"
-#include "crane_twin/analysis/usage_counter.hpp"
 #include "crane_twin/drives/command_guard.hpp"
 #include "crane_twin/drives/trajectory_follower.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
@@ -32,6 +31,7 @@
 #include "recorder_link.hpp"
 #include "ros_messages.hpp"
 #include "twin_adapter.hpp"
+#include "usage_link.hpp"
 
 namespace crane_twin {
 
@@ -69,9 +69,8 @@ class CraneSimNode {
   std::vector<double> follower_t_;  ///< latest simulated time of each clock follower [s]
   CraneState last_state_;           ///< the last crane/state published
   LiftOffMonitor lift_off_;         ///< lift-offs and their dynamic factor (crane/state)
-  /// What the run has cost the crane since the start or ~reset (crane/usage, 1 Hz).
-  std::unique_ptr<UsageCounter> usage_;
-  ros::Publisher usage_pub_;
+  /// What the run has cost the crane (crane/usage and its diagnostic status, 1 Hz).
+  std::unique_ptr<UsageLink> usage_;
   /// While paused under simulated time: TF stamps step by 1 ns a publication past the frozen
   /// clock (tf2 drops a transform whose stamp repeats).
   ros::Duration tf_stamp_offset_;

@@ -58,6 +58,9 @@ NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
   optionalParam(pnh, "command_bag", s.command_bag, "a string");
   optionalParam(pnh, "wait_for_recorder", s.wait_for_recorder, "a node name");
   optionalParam(pnh, "frame_prefix", s.frame_prefix, "a string");
+  optionalParam(pnh, "usage_file", s.usage.file, "a file name");
+  optionalParam(pnh, "usage_save_period", s.usage.save_period, "a number");
+  requireFinite("usage_save_period", s.usage.save_period, 0.0, true);
   if (!s.frame_prefix.empty() && s.frame_prefix.back() != '/') s.frame_prefix += '/';
   if (s.frame_prefix.find_first_of(" \t") != std::string::npos ||
       (!s.frame_prefix.empty() && s.frame_prefix.front() == '/')) {

@@ -9,6 +9,7 @@
 
 #include "crane_twin/analysis/crane_snapshot.hpp"
 #include "twin_adapter.hpp"
+#include "usage_link.hpp"
 
 namespace crane_twin {
 
@@ -43,7 +44,8 @@ struct NodeSettings {
   std::vector<double> base_pose;
   std::vector<std::string> recorded_topics;  ///< default: crane/state
   SnapshotOptions snapshot;
-  TwinSettings twin;  ///< measured input, sway estimator, forecast (docs/twin.md)
+  TwinSettings twin;    ///< measured input, sway estimator, forecast (docs/twin.md)
+  UsageSettings usage;  ///< ~usage_file, ~usage_save_period (docs/ros.md "Usage")
 };
 
 /// Read and check the private parameters. Throws InputError naming the parameter.

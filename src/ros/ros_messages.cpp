@@ -216,8 +216,13 @@ CraneUsage toUsageMessage(const UsageReport& u, const ros::Time& stamp) {
   CraneUsage m;
   m.header.stamp = stamp;
   m.hours = u.hours;
-  m.lifts = static_cast<int>(u.lifts.size());
+  m.lifts = static_cast<int>(u.lift_count);
   m.k_q = u.k_q;
+  m.u_class = u.u_class;
+  m.q_class = u.q_class;
+  m.design_hours = u.design_hours;
+  m.lifts_in_design_life = u.lifts_in_design_life;
+  m.u_class_in_design_life = u.u_class_in_design_life;
   for (const LiftRecord& l : u.lifts) {
     m.lift_masses.push_back(l.mass);
     m.lift_factors.push_back(l.dynamic_factor);
@@ -227,6 +232,7 @@ CraneUsage toUsageMessage(const UsageReport& u, const ros::Time& stamp) {
     m.damage.push_back(h.damage);
     m.damage_per_hour.push_back(h.damage_per_hour);
     m.hours_to_failure.push_back(h.hours_to_failure);
+    m.short_of_design_life.push_back(h.short_of_design_life);
   }
   return m;
 }

@@ -30,10 +30,21 @@ struct RainflowCycle {
 /// between (a plateau counts once). Throws std::invalid_argument for a non-finite value.
 std::vector<double> turningPoints(const std::vector<double>& history);
 
+/// What a RainflowCounter holds between values (a node's counts kept across its restarts).
+struct RainflowState {
+  std::vector<double> turning_points;  ///< counted so far, no cycle closed among them
+  std::vector<double> pending;  ///< the last one or two values (a turning point once it turns)
+};
+
 /// The counting above as the history comes, one value at a time: only the pending turning
 /// point and the points not yet counted are kept (a node counting for hours keeps no history).
 class RainflowCounter {
  public:
+  RainflowCounter() = default;
+  /// A counter that goes on from `state` (of state()). Throws std::invalid_argument for a
+  /// non-finite value or more than two pending ones.
+  explicit RainflowCounter(RainflowState state);
+  RainflowState state() const { return {stack_, pending_}; }
   /// The history's next value; the cycles it closes are appended to `closed`. Throws
   /// std::invalid_argument for a non-finite value.
   void add(double x, std::vector<RainflowCycle>& closed);

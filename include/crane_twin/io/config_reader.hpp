@@ -66,6 +66,8 @@ class ConfigNode {
   /// A required list of 2 finite numbers.
   Eigen::Vector2d vec2(const std::string& key);
   std::vector<double> numberList(const std::string& key, std::size_t size, Bounds b);
+  /// A list of numbers of any length within `b`; absent or null: empty.
+  std::vector<double> numberList(const std::string& key, Bounds b);
   /// A list of strings; absent or null: empty.
   std::vector<std::string> stringList(const std::string& key);
 

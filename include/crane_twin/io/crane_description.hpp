@@ -78,6 +78,9 @@ struct CraneDescription {
   Eigen::Vector3d cab_position = Eigen::Vector3d::Zero();  ///< slewing frame [m]
   std::vector<LumpedMassSpec> lumped_masses;
   std::vector<HotSpotSpec> hot_spots;  ///< `hot_spots:` (none: no stress output)
+  /// `design_hours:` the hours of use the steel is designed for [h] (0: not given), against
+  /// which a usage count projects its hot spots' lives (docs/fatigue.md "Usage").
+  double design_hours = 0.0;
   double trolley_mass = 0.0, hook_block_mass = 0.0;
   double min_radius = 0.0, max_radius = 0.0;
   double min_rope_length = 0.0, max_rope_length = 0.0;
