@@ -275,15 +275,18 @@ commands:
 }
 
 // The monitor on synthetic rows: a bounce (off the ground for 0.2 s) is no lift and carries no
-// factor; a lift counts once 0.5 s off the ground, its factor the peak tension over the static
-// one in the window, the rows before its confirmation included; a landing ends the window.
+// factor; a lift counts once 0.5 s off the ground with the hoist reeling in, its factor the peak
+// tension over the static one in the window, the rows before its confirmation included; a
+// landing ends the window; a load thrown up without the hoist reeling in is no lift.
 TEST(GroundLanding, LiftOffMonitorCountsLiftsNotBounces) {
   LiftOffMonitor mon(3.0);
-  auto row = [&](double t, bool landed, double tension) {
+  // The rope: 60 m until the hoist reels in at 0.1 m/s from t = 2 s.
+  auto row = [&](double t, bool landed, double tension, double length = -1.0) {
     SeriesValues v;
     v.t = t;
     v.payload_landed = landed;
     v.rope_top_tension = tension;
+    v.rope_length = length >= 0.0 ? length : 60.0 - 0.1 * std::max(0.0, t - 2.0);
     mon.observe(v, 1000.0);
   };
   for (double t = 0.0; t < 1.0; t += 0.01) row(t, true, 500.0);
@@ -306,6 +309,20 @@ TEST(GroundLanding, LiftOffMonitorCountsLiftsNotBounces) {
   EXPECT_FALSE(mon.measuring());
   row(6.0, false, 5000.0);  // after the window: not a lift-off's peak
   EXPECT_DOUBLE_EQ(mon.factor(), 1.45);
+  // Set down on 59.6 m of rope; the hoist stopped, the jib's rebound throws the load up for a
+  // second: no lift (the hoist did not reel in).
+  for (double t = 6.1; t < 7.0; t += 0.01) row(t, true, 300.0, 59.6);
+  for (double t = 7.0; t < 8.0; t += 0.01) row(t, false, 1200.0, 59.6);
+  EXPECT_EQ(mon.liftOffs(), 1);
+  // It lands again; the hoist pays out 0.5 m, then reels in at 0.1 m/s: the load leaves the
+  // ground at 13.5 s and counts 0.5 s later.
+  for (double t = 8.0; t < 9.0; t += 0.01) row(t, true, 300.0, 59.6 + 0.5 * (t - 8.0));
+  for (double t = 9.0; t < 13.5; t += 0.01) row(t, true, 300.0, 60.1 - 0.1 * (t - 9.0));
+  for (double t = 13.5; t < 14.0; t += 0.01) row(t, false, 1100.0, 60.1 - 0.1 * (t - 9.0));
+  EXPECT_EQ(mon.liftOffs(), 1);
+  row(14.01, false, 1100.0, 60.1 - 0.1 * 5.01);
+  EXPECT_EQ(mon.liftOffs(), 2);
+  EXPECT_NEAR(mon.lastLiftOffTime(), 13.5, 1e-9);
   EXPECT_THROW(LiftOffMonitor(0.2), std::invalid_argument);
 }
 

@@ -22,33 +22,47 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// A synthetic history of 3.6 t on the T8036, rows k0 .. k1 of it at 100 Hz: landed until t = 2,
+// lifted (the tension at its static value) with the hoist reeling in at 0.05 m/s, set down from
+// 40 to 50 s with the hoist paying out, lifted again until the end at t = 100 s; the hot spots'
+// stresses ring with slowly growing amplitudes. `clock` [s] is taken from each row's time (a
+// node that started again counts from its own zero).
+void feed(const CraneModel& m, UsageCounter& usage, LiftOffMonitor& lift_off, int k0, int k1,
+          double clock, std::vector<std::vector<double>>* history = nullptr) {
+  const double T = staticTopTension(m, 60.0);
+  const int spots = m.hot_spots ? static_cast<int>(m.hot_spots->rows.size()) : 0;
+  for (int k = k0; k <= k1; ++k) {
+    SeriesValues row;
+    const double t = 0.01 * k;
+    row.t = t - clock;
+    row.payload_landed = t < 2.0 || (t >= 40.0 && t < 50.0);
+    row.rope_length = 60.0 - 0.05 * (t < 40.0 ? t : t < 50.0 ? 80.0 - t : t - 20.0);
+    row.rope_top_tension = row.payload_landed ? 0.1 * T : T;
+    for (int i = 0; i < spots; ++i) {
+      const double s = 1e6 * (i + 1) * (1.0 + 0.01 * t) * std::sin(2.0 * kPi * 0.3 * t);
+      row.stresses.push_back(s);
+      if (history) (*history)[i].push_back(s);
+    }
+    lift_off.observe(row, T);
+    usage.observe(row, lift_off);
+  }
+}
+
+CraneModel liftOffModel(std::vector<std::string> sets = {}) {
+  sets.push_back("rope.elements=10");
+  return buildCraneModel(loadScene(
+      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_lift_off_slow.yaml", sets));
+}
+
 TEST(UsageCounter, LiftsKqAndTheDamageOfTheWholeHistory) {
-  // 3.6 t on the T8036 (max_load 12.5 t, four hot spots on category 71): landed 2 s, lifted
-  // at t = 2 (the tension at its static value), set down at t = 40, lifted again at t = 50
-  // until the end at t = 100 s; the hot spots' stresses ring with slowly growing amplitudes.
-  const CraneModel m = buildCraneModel(
-      loadScene(std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_lift_off_slow.yaml",
-                {"rope.elements=10"}));
+  // The history above: two lifts, four hot spots on category 71 (max_load 12.5 t).
+  const CraneModel m = liftOffModel();
   ASSERT_TRUE(m.hot_spots);
   const int spots = static_cast<int>(m.hot_spots->rows.size());
   UsageCounter usage(m);
   LiftOffMonitor lift_off;
   std::vector<std::vector<double>> history(spots);
-  const double T = staticTopTension(m, 60.0);
-  for (int k = 0; k <= 10000; ++k) {
-    SeriesValues row;
-    row.t = 0.01 * k;
-    row.rope_length = 60.0;
-    row.payload_landed = row.t < 2.0 || (row.t >= 40.0 && row.t < 50.0);
-    row.rope_top_tension = row.payload_landed ? 0.1 * T : T;
-    for (int i = 0; i < spots; ++i) {
-      const double s = 1e6 * (i + 1) * (1.0 + 0.01 * row.t) * std::sin(2.0 * kPi * 0.3 * row.t);
-      row.stresses.push_back(s);
-      history[i].push_back(s);
-    }
-    lift_off.observe(row, T);
-    usage.observe(row, lift_off);
-  }
+  feed(m, usage, lift_off, 0, 10000, 0.0, &history);
   const UsageReport r = usage.report();
   EXPECT_NEAR(r.hours, 100.0 / 3600.0, 1e-12);
   ASSERT_EQ(r.lifts.size(), 2u);
@@ -88,36 +102,6 @@ TEST(UsageCounter, ARunWithoutLiftsOrHotSpotsReportsNothingToCount) {
   EXPECT_TRUE(r.lifts.empty());
   EXPECT_EQ(r.k_q, 0.0);
   EXPECT_TRUE(r.hot_spots.empty());
-}
-
-// The history of the first test, rows k0 .. k1 of it: landed until t = 2, set down from 40 to
-// 50 s; the hot spots ring with slowly growing amplitudes. `clock` [s] is taken from each row's
-// time (a node that started again counts from its own zero).
-void feed(const CraneModel& m, UsageCounter& usage, LiftOffMonitor& lift_off, int k0, int k1,
-          double clock, std::vector<std::vector<double>>* history = nullptr) {
-  const double T = staticTopTension(m, 60.0);
-  const int spots = m.hot_spots ? static_cast<int>(m.hot_spots->rows.size()) : 0;
-  for (int k = k0; k <= k1; ++k) {
-    SeriesValues row;
-    const double t = 0.01 * k;
-    row.t = t - clock;
-    row.rope_length = 60.0;
-    row.payload_landed = t < 2.0 || (t >= 40.0 && t < 50.0);
-    row.rope_top_tension = row.payload_landed ? 0.1 * T : T;
-    for (int i = 0; i < spots; ++i) {
-      const double s = 1e6 * (i + 1) * (1.0 + 0.01 * t) * std::sin(2.0 * kPi * 0.3 * t);
-      row.stresses.push_back(s);
-      if (history) (*history)[i].push_back(s);
-    }
-    lift_off.observe(row, T);
-    usage.observe(row, lift_off);
-  }
-}
-
-CraneModel liftOffModel(std::vector<std::string> sets = {}) {
-  sets.push_back("rope.elements=10");
-  return buildCraneModel(loadScene(
-      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_lift_off_slow.yaml", sets));
 }
 
 TEST(UsageCounter, ClassesAndTheDesignLifeProjection) {

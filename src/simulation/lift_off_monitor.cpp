@@ -19,6 +19,10 @@ LiftOffMonitor::LiftOffMonitor(double window) : window_(window) {
 
 void LiftOffMonitor::observe(const SeriesValues& row, double static_tension) {
   if (row.payload_landed) {
+    // A lift ended: the hoist must reel in anew. After a bounce (a lift not confirmed) the
+    // load lies as it lay before.
+    if (!was_landed_ && confirmed_) landed_length_ = row.rope_length;
+    landed_length_ = std::max(landed_length_, row.rope_length);
     was_landed_ = true;
     measuring_ = false;  // landed again: the window ends (and a bounce is forgotten)
     return;
@@ -37,7 +41,8 @@ void LiftOffMonitor::observe(const SeriesValues& row, double static_tension) {
   }
   if (static_tension > 0.0)
     candidate_factor_ = std::max(candidate_factor_, row.rope_top_tension / static_tension);
-  if (!confirmed_ && row.t >= candidate_time_ + kConfirmation) {
+  if (!confirmed_ && row.t >= candidate_time_ + kConfirmation &&
+      landed_length_ - row.rope_length >= kReelIn) {
     confirmed_ = true;  // off the ground long enough: a lift, not a bounce
     ++lift_offs_;
     last_time_ = candidate_time_;

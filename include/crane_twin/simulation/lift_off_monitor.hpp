@@ -2,8 +2,10 @@
 // phi_2): the peak rope top tension over the static one in the window after the load leaves the
 // ground. Fed the output rows of a run (docs/cli.md), whatever the model.
 //   lift-off  at the first row without ground contact after rows with it, counted once the load
-//             has stayed off the ground for kConfirmation (a load that lands again sooner
-//             bounced: a set-down's bounce is no lift);
+//             has stayed off the ground for kConfirmation and the rope is by then kReelIn
+//             shorter than the longest it was while the load lay (a load that lands again sooner
+//             bounced, one the hoist did not lift was thrown up by the structure or its swing:
+//             neither is a lift);
 //   phi_2     = max T_top(t) / T_static over [t_lift, t_lift + window], T_static the hanging
 //               weight at that row's rope length (staticTopTension);
 // a landing inside the window ends it. Sampled at the rows' interval: a peak of a tension
@@ -23,6 +25,7 @@ double staticTopTension(const CraneModel& model, double rope_length);
 class LiftOffMonitor {
  public:
   static constexpr double kConfirmation = 0.5;  ///< [s] off the ground to count as a lift
+  static constexpr double kReelIn = 0.01;       ///< [m] the hoist reeled in to lift it
   /// window > kConfirmation [s] after each lift-off. Throws std::invalid_argument otherwise.
   explicit LiftOffMonitor(double window = 3.0);
   /// One output row and the static top tension for it [N].
@@ -47,6 +50,8 @@ class LiftOffMonitor {
  private:
   double window_;
   bool was_landed_ = false, measuring_ = false, confirmed_ = false;
+  /// The longest rope while the load lay on the ground since the last lift ended [m].
+  double landed_length_ = 0.0;
   double candidate_time_ = 0.0, candidate_factor_ = 0.0;  ///< the window under way
   int lift_offs_ = 0;
   double factor_ = 0.0, last_factor_ = 0.0, last_time_ = 0.0;
