@@ -229,6 +229,36 @@ TEST(WithPayloadMass, RefusesAMassThatIsNoLoadNamingTheKey) {
   EXPECT_THROW(withScene(m, other), InputError);
 }
 
+TEST(WithPayloadPickedUp, HangsTheNewLoadAtRestWhereTheDrivesStand) {
+  // Slew, run the trolley in and hoist for 4 s, stop; the new model's pose is the drives', its
+  // load hangs at rest under the trolley from the start, without the scene's commands.
+  const CraneModel m =
+      buildCraneModel(loadScene(kScenes + "t8036_live.yaml", {"rope.elements=20"}));
+  std::unique_ptr<Simulation> sim = makeSimulation(m);
+  sim->initialize();
+  CommandEntry c;
+  c.slew_rate = 0.05;
+  c.trolley_speed = -0.5;
+  c.hoist_speed = -0.5;
+  sim->setCommand(c);
+  while (sim->time() < 4.0) sim->step();
+  const CraneDrives& d = sim->drives();
+  const CraneModel picked = withPayloadPickedUp(m, d, 5000.0);
+  EXPECT_EQ(picked.scene.payload_mass, 5000.0);
+  EXPECT_EQ(picked.scene.slew_angle, d.slewAngle());
+  EXPECT_EQ(picked.scene.trolley_radius, d.trolleyRadius());
+  EXPECT_EQ(picked.scene.rope.length, d.hoistLength());
+  EXPECT_NE(picked.scene.trolley_radius, m.scene.trolley_radius);  // the drives moved
+  EXPECT_TRUE(picked.scene.commands.empty());
+  EXPECT_EQ(picked.scene.initial_mode, "equilibrium");
+  std::unique_ptr<Simulation> next = makeSimulation(picked);
+  next->initialize();
+  const SeriesValues v = next->series();
+  EXPECT_LT(std::hypot(v.payload.x() - v.trolley.x(), v.payload.y() - v.trolley.y()), 1e-3);
+  EXPECT_LT(v.payload_velocity.norm(), 1e-9);
+  EXPECT_THROW(withPayloadPickedUp(m, d, -1.0), InputError);
+}
+
 // A hanging load at rest changed from 3.6 t to 4.6 t in a running simulation: the state goes
 // on where it was (time, positions), and the rope then carries the new load: the top tension's
 // mean over 4 s (eight periods of the rope's axial ringing at 2 Hz), from 1 s after the change,

@@ -2,11 +2,8 @@
 
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <ros/master.h>
-#include <rosbag/bag.h>
-#include <rosbag/view.h>
 #include <rosgraph_msgs/Clock.h>
 #include <sensor_msgs/JointState.h>
-#include <std_msgs/Bool.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -23,28 +20,16 @@
 #include "crane_twin/io/site_description.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
 #include "node_params.hpp"
+#include "node_status.hpp"
 #include "ros_messages.hpp"
 
 namespace crane_twin {
-
-namespace {
-
-CommandEntry entryOf(const CraneCommand& m) {
-  CommandEntry c;
-  c.slew_rate = m.slew_rate;
-  c.trolley_speed = m.trolley_speed;
-  c.hoist_speed = m.hoist_speed;
-  return c;
-}
-
-}  // namespace
 
 CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings settings)
     : nh_(nh),
       pnh_(pnh),
       settings_(std::move(settings)),
-      model_(buildCraneModel(loadScene(settings_.scene, settings_.overrides))),
-      watchdog_(settings_.command_timeout) {
+      model_(buildCraneModel(loadScene(settings_.scene, settings_.overrides))) {
   if (settings_.duration < 0.0) settings_.duration = model_.scene.duration;
   paused_ = settings_.start_paused;
   // The crane on the site: world -> <prefix>base, latched (docs/site.md).
@@ -58,9 +43,8 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   if (settings_.twin.measured_input && !settings_.command_bag.empty()) {
     throw InputError("parameters '~input' 'measured' and '~command_bag' exclude each other");
   }
-  base_yaw_ = yaw;
   twin_ = std::make_unique<TwinAdapter>(nh_, settings_.twin, frames_, base, yaw);
-  loadReplay();
+  inputs_ = std::make_unique<CommandInputs>(nh_, settings_, model_, yaw);
   usage_ = std::make_unique<UsageLink>(nh_, settings_.usage, model_);
   resetSimulation();
   recorder_ =
@@ -69,14 +53,9 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   joint_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 1000);
   state_pub_ = nh_.advertise<CraneState>("crane/state", 1000);  // rtf 0: bursts
   marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("crane/rope", 200);
-  applied_pub_ = nh_.advertise<CraneCommand>("crane/command_applied", 50, true);
   diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 5);
   if (settings_.publish_clock) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
   static_tf_.sendTransform(toBaseTransform(frames_, base, yaw, ros::Time::now()));
-  command_sub_ = nh_.subscribe("crane/command", 20, &CraneSimNode::onCommand, this);
-  trajectory_sub_ = nh_.subscribe("crane/joint_trajectory", 5, &CraneSimNode::onTrajectory, this);
-  wind_sub_ = nh_.subscribe("crane/wind", 10, &CraneSimNode::onWind, this);
-  goal_pub_ = nh_.advertise<std_msgs::Bool>("crane/goal_reached", 1, true);
   follower_t_.assign(settings_.clock_followers.size(), -std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < settings_.clock_followers.size(); ++i) {
     follower_subs_.push_back(nh_.subscribe<CraneState>(
@@ -96,53 +75,20 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
       settings_.command_bag.empty() ? "" : ", replaying commands from a bag");
 }
 
-// Commands the recorded run applied, by simulated time (crane/command_applied stamps).
-void CraneSimNode::loadReplay() {
-  replay_all_.clear();
-  if (settings_.command_bag.empty()) return;
-  try {
-    rosbag::Bag bag(settings_.command_bag, rosbag::bagmode::Read);
-    rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{"crane/command_applied",
-                                                                       "/crane/command_applied"}));
-    for (const rosbag::MessageInstance& m : view) {
-      const CraneCommand::ConstPtr c = m.instantiate<CraneCommand>();
-      if (c) replay_all_.push_back({c->header.stamp.toSec(), entryOf(*c)});
-    }
-  } catch (const rosbag::BagException& e) {
-    throw InputError("parameter '~command_bag' '" + settings_.command_bag + "': " + e.what());
-  }
-  if (replay_all_.empty()) {
-    throw InputError("parameter '~command_bag' '" + settings_.command_bag +
-                     "': no crane_twin/CraneCommand on /crane/command_applied");
-  }
-  std::stable_sort(replay_all_.begin(), replay_all_.end(),
-                   [](const Replayed& a, const Replayed& b) { return a.t < b.t; });
-  for (const auto& r : replay_all_) {
-    const CommandVerdict v = checkCommand(model_.scene, r.command);
-    if (!v.accepted) {
-      throw InputError("parameter '~command_bag' '" + settings_.command_bag +
-                       "': recorded command at t = " + std::to_string(r.t) + " s: " + v.reason);
-    }
-  }
-}
-
 void CraneSimNode::resetSimulation() {
   t_offset_ = 0.0;
   usage_->restart(model_);
-  restartSimulation();
-  replay_.assign(replay_all_.begin(), replay_all_.end());
+  restartSimulation(CommandInputs::Start::kFromStart);
   stamp_origin_ =
       settings_.publish_clock || settings_.follow_clock ? ros::Time(0) : ros::Time::now();
 }
 
-void CraneSimNode::restartSimulation() {
+void CraneSimNode::restartSimulation(CommandInputs::Start start) {
   sim_ = makeSimulation(model_);
   sim_->initialize();
   lift_off_ = LiftOffMonitor();
-  if (measured_wind_) sim_->setMeasuredWind(*measured_wind_);
+  inputs_->attach(*sim_, model_, t_offset_, start);
   twin_->restart(model_, *sim_);
-  follower_.cancel();
-  watchdog_ = CommandWatchdog(settings_.command_timeout);
   finished_ = failed_ = false;
   failure_.clear();
   next_publish_ = sim_->time();
@@ -154,145 +100,6 @@ void CraneSimNode::restartSimulation() {
 
 ros::Time CraneSimNode::stamp(double t) const {
   return stamp_origin_ + ros::Duration(t_offset_ + t);
-}
-
-void CraneSimNode::warnThrottled(const std::string& what) {
-  const ros::WallTime now = ros::WallTime::now();
-  if ((now - last_warn_wall_).toSec() < 2.0) return;
-  last_warn_wall_ = now;
-  ROS_WARN("crane_sim_node: %s (%ld commands rejected so far)", what.c_str(), rejected_);
-}
-
-// Commands act from the next step on; each applied command is republished with its simulated
-// time on crane/command_applied, which is what replay feeds back.
-void CraneSimNode::apply(const CommandEntry& c, const char* source) {
-  sim_->setCommand(c);
-  CraneCommand m;
-  m.header.stamp = ros::Time(t_offset_ + sim_->time());
-  m.header.frame_id = source;
-  m.slew_rate = c.slew_rate;
-  m.trolley_speed = c.trolley_speed;
-  m.hoist_speed = c.hoist_speed;
-  applied_pub_.publish(m);
-}
-
-void CraneSimNode::onCommand(const CraneCommand::ConstPtr& msg) {
-  if (settings_.twin.measured_input) {
-    ++rejected_;
-    warnThrottled(
-        "~input measured: the twin follows crane/measured_joint_states; crane/command ignored");
-    return;
-  }
-  if (!settings_.command_bag.empty()) {
-    ++rejected_;
-    warnThrottled("replaying a bag: live command on crane/command ignored");
-    return;
-  }
-  const CommandEntry c = entryOf(*msg);
-  const CommandVerdict v = checkCommand(model_.scene, c);
-  if (!v.accepted) {
-    ++rejected_;
-    warnThrottled("command rejected: " + v.reason);
-    return;
-  }
-  if (failed_) {
-    ++rejected_;
-    warnThrottled("command ignored: the simulation stopped (" + failure_ + "); call ~reset");
-    return;
-  }
-  try {
-    apply(c, "operator");
-  } catch (const std::exception& e) {  // InputError: not built for this model
-    ++rejected_;
-    warnThrottled(std::string("command rejected: ") + e.what());
-    return;
-  }
-  if (v.over_limit) warnThrottled("command above a speed limit: " + v.reason);
-  watchdog_.received(sim_->time());
-  if (follower_.active()) {  // a rate command takes over from a goal
-    follower_.cancel();
-    ROS_INFO("crane_sim_node: trajectory cancelled by a rate command on crane/command");
-  }
-}
-
-// An anemometer's wind at the jib's height (docs/ros.md): m/s in the world frame, turned into
-// the crane's frame; its horizontal part replaces the scene's wind from the next step on.
-void CraneSimNode::onWind(const geometry_msgs::Vector3Stamped::ConstPtr& msg) {
-  const Eigen::Vector3d w(msg->vector.x, msg->vector.y, msg->vector.z);
-  const std::string& frame = msg->header.frame_id;
-  std::string why;
-  if (!w.allFinite()) why = "a non-finite component";
-  if (!frame.empty() && frame != "world" && frame != "/world") {
-    why = "frame '" + frame + "' (the wind is taken in 'world')";
-  }
-  if (!why.empty()) {
-    ++rejected_;
-    warnThrottled("crane/wind rejected: " + why);
-    return;
-  }
-  const Eigen::Vector3d v = Eigen::AngleAxisd(-base_yaw_, Eigen::Vector3d::UnitZ()) * w;
-  try {
-    sim_->setMeasuredWind(v);
-    measured_wind_ = v;
-  } catch (const std::exception& e) {  // InputError: this rope model takes no wind
-    ++rejected_;
-    warnThrottled(std::string("crane/wind rejected: ") + e.what());
-  }
-}
-
-void CraneSimNode::onTrajectory(const trajectory_msgs::JointTrajectory::ConstPtr& msg) {
-  auto reject = [&](const std::string& why) {
-    ++rejected_;
-    ROS_WARN("crane_sim_node: trajectory rejected: %s", why.c_str());
-  };
-  if (!settings_.command_bag.empty()) return reject("replaying a bag");
-  if (settings_.twin.measured_input) return reject("~input measured: the twin follows the crane");
-  if (failed_) return reject("the simulation stopped (" + failure_ + "); call ~reset");
-  if (!model_.scene.crane) return reject("the scene has no crane (crane: none)");
-  int index[3] = {-1, -1, -1};
-  for (std::size_t j = 0; j < msg->joint_names.size(); ++j) {
-    int a = -1;
-    for (int k = 0; k < 3; ++k)
-      if (msg->joint_names[j] == kJointNames[k]) a = k;
-    if (a < 0) return reject("unknown joint '" + msg->joint_names[j] + "' (slew, trolley, hoist)");
-    if (index[a] >= 0) return reject("joint '" + msg->joint_names[j] + "' named twice");
-    index[a] = static_cast<int>(j);
-  }
-  std::vector<TrajectoryPoint> points;
-  for (std::size_t k = 0; k < msg->points.size(); ++k) {
-    const auto& p = msg->points[k];
-    if (p.positions.size() != msg->joint_names.size()) {
-      return reject("point " + std::to_string(k) + " has " + std::to_string(p.positions.size()) +
-                    " positions for " + std::to_string(msg->joint_names.size()) + " joints");
-    }
-    TrajectoryPoint q;
-    q.time_from_start = p.time_from_start.toSec();
-    for (int a = 0; a < 3; ++a)
-      if (index[a] >= 0) q.target[a] = p.positions[index[a]];
-    points.push_back(q);
-  }
-  const std::string why = TrajectoryFollower::validate(points, *model_.scene.crane);
-  if (!why.empty()) return reject(why);
-  follower_.start(std::move(points), sim_->time());
-  publishGoalReached(false);
-  ROS_INFO("crane_sim_node: following a trajectory of %zu points", msg->points.size());
-}
-
-void CraneSimNode::publishGoalReached(bool reached) {
-  std_msgs::Bool b;
-  b.data = reached;
-  goal_pub_.publish(b);
-}
-
-void CraneSimNode::followTrajectory() {
-  if (!follower_.active()) return;
-  const CommandEntry c = follower_.command(sim_->time(), sim_->drives(), *model_.scene.crane);
-  sim_->setCommand(c);
-  watchdog_.received(sim_->time());
-  if (!follower_.active() && follower_.reached()) {
-    publishGoalReached(true);
-    ROS_INFO("crane_sim_node: trajectory reached at t = %g s", sim_->time());
-  }
 }
 
 bool CraneSimNode::onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
@@ -340,24 +147,13 @@ bool CraneSimNode::onSetPayload(SetPayload::Request& req, SetPayload::Response& 
     return true;
   }
   // The new load hangs in static equilibrium where the crane stands (docs/ros.md): the same
-  // model with another load, pose and initial state, its structure not rebuilt (withScene).
+  // model with another load, pose and initial state, its structure not rebuilt.
   try {
-    Scene s = model_.scene;
-    s.payload_mass = req.mass;
-    if (s.crane) {
-      s.slew_angle = d.slewAngle();
-      s.trolley_radius = d.trolleyRadius();
-      s.rope.length = d.hoistLength();
-    }
-    s.initial_mode = "equilibrium";
-    s.swing_deg = 0.0;
-    s.payload_velocity = Eigen::Vector3d::Zero();
-    s.commands.clear();
-    CraneModel m = withScene(model_, s);
+    CraneModel m = withPayloadPickedUp(model_, d, req.mass);
     const double t = t_offset_ + sim_->time();
     model_ = std::move(m);
     t_offset_ = t;
-    restartSimulation();
+    restartSimulation(CommandInputs::Start::kRestarted);
   } catch (const std::exception& e) {
     res.message = std::string("refused: ") + e.what();
     return true;
@@ -378,12 +174,13 @@ void CraneSimNode::takeMeasuredPayload(double mass) {
     const double from = model_.scene.payload_mass;
     model_ = std::move(m);
     sim_ = std::move(next);
+    inputs_->attach(*sim_, model_, t_offset_, CommandInputs::Start::kContinued);
     twin_->loadChanged(model_);
     usage_->setPayloadMass(mass);
     ROS_INFO("crane_sim_node (twin): the load cell finds %.0f kg lifted (was %.0f kg) at t = %g s",
              mass, from, t_offset_ + sim_->time());
   } catch (const std::exception& e) {  // a model that cannot continue with another load
-    warnThrottled(std::string("the load cell's payload mass not taken: ") + e.what());
+    inputs_->warnThrottled(std::string("the load cell's payload mass not taken: ") + e.what());
   }
 }
 
@@ -395,26 +192,12 @@ bool CraneSimNode::onPause(std_srvs::SetBool::Request& req, std_srvs::SetBool::R
   return true;
 }
 
-void CraneSimNode::applyDueCommands() {
-  const double t = sim_->time(), half = 0.5 * model_.scene.time_step;
-  while (!replay_.empty() && replay_.front().t <= t + half) {
-    apply(replay_.front().command, "replay");
-    replay_.pop_front();
-  }
+bool CraneSimNode::stepOnce() {
   if (settings_.twin.measured_input) {
     sim_->setCommand(twin_->followCommand(*sim_));
-    return;
+  } else {
+    inputs_->beforeStep();
   }
-  if (settings_.command_bag.empty() && watchdog_.expired(t)) {
-    apply(CommandEntry{}, "timeout");
-    warnThrottled("no command for " + std::to_string(settings_.command_timeout) +
-                  " s: drives ramp to rest");
-  }
-}
-
-bool CraneSimNode::stepOnce() {
-  applyDueCommands();
-  followTrajectory();
   const auto t0 = std::chrono::steady_clock::now();
   try {
     sim_->step();
@@ -427,6 +210,7 @@ bool CraneSimNode::stepOnce() {
     std::ostringstream s;
     s << "t = " << sim_->time() << " s: " << e.what();
     failure_ = s.str();
+    inputs_->stopped(failure_);
     ROS_ERROR("crane_sim_node: simulation stopped at %s; call ~reset to start again",
               failure_.c_str());
     return false;
@@ -499,18 +283,8 @@ void CraneSimNode::publish() {
 }
 
 PayloadForecaster::CommandSource CraneSimNode::forecastCommand() const {
-  const double t = sim_->time();
-  if (settings_.twin.measured_input) {
-    const CommandEntry c = twin_->measuredRates(t);
-    return [c](double, const CraneDrives&) { return c; };
-  }
-  if (follower_.active() && model_.scene.crane) {
-    const CraneDescription crane = *model_.scene.crane;
-    return [f = follower_, crane](double time, const CraneDrives& d) mutable {
-      return f.command(time, d, crane);
-    };
-  }
-  const CommandEntry c = sim_->drives().activeCommand(t);
+  if (!settings_.twin.measured_input) return inputs_->forecastCommand();
+  const CommandEntry c = twin_->measuredRates(sim_->time());
   return [c](double, const CraneDrives&) { return c; };
 }
 
@@ -533,48 +307,28 @@ void CraneSimNode::publishPaused() {
 }
 
 void CraneSimNode::publishDiagnostics() {
+  NodeRunRecord r;
+  r.node_name = ros::this_node::getName();
+  r.scene_file = model_.scene.file;
+  r.rope_model = model_.scene.rope.model;
+  r.paused = paused_;
+  r.finished = finished_;
+  if (failed_) r.failure = failure_;
+  r.sim_time = sim_->time();
+  r.real_time_factor = last_rtf_;
+  r.requested_real_time_factor = settings_.real_time_factor;
+  r.step_cost = last_step_cost_;
+  r.steps = steps_;
+  r.rejected_commands = inputs_->rejected();
+  r.pacing_overruns = pacer_ ? pacer_->overruns() : 0;
+  r.warnings_seen = warnings_seen_;
+  r.wind_3s = last_wind_3s_;
+  r.statistics = sim_->statistics();
   diagnostic_msgs::DiagnosticArray a;
   a.header.stamp = stamp(sim_->time());
-  diagnostic_msgs::DiagnosticStatus d;
-  d.name = ros::this_node::getName() + ": simulation";  // one per crane on a site
-  d.hardware_id = model_.scene.file;
-  const bool slow = settings_.real_time_factor > 0.0 && !paused_ && !finished_ &&
-                    last_rtf_ < 0.9 * settings_.real_time_factor;
-  if (failed_) {
-    d.level = diagnostic_msgs::DiagnosticStatus::ERROR;
-    d.message = "stopped: " + failure_;
-  } else if (slow) {
-    d.level = diagnostic_msgs::DiagnosticStatus::WARN;
-    d.message = "behind the requested real-time factor";
-  } else {
-    d.level = diagnostic_msgs::DiagnosticStatus::OK;
-    d.message = paused_ ? "paused" : finished_ ? "end of scene reached" : "running";
-  }
-  addNumber(d, "sim_time_s", sim_->time());
-  addNumber(d, "real_time_factor", last_rtf_);
-  addNumber(d, "requested_real_time_factor", settings_.real_time_factor);
-  addNumber(d, "step_cost_s", last_step_cost_);
-  addNumber(d, "steps", static_cast<double>(steps_));
-  const RunStatistics stats = sim_->statistics();
-  addNumber(d, "subdomains", stats.subdomains);
-  addNumber(d, "hand_overs", static_cast<double>(stats.hand_overs));
-  addNumber(d, "full_order_steps", static_cast<double>(stats.full_order_steps));
-  addNumber(d, "mode_updates_s", stats.mode_update_seconds);
-  addNumber(d, "rejected_commands", static_cast<double>(rejected_));
-  addNumber(d, "pacing_overruns", pacer_ ? static_cast<double>(pacer_->overruns()) : 0.0);
-  addNumber(d, "warnings_seen", warnings_seen_);
-  {
-    std::string names;
-    for (int bit = 1; bit <= kLastWarning; bit <<= 1)
-      if (warnings_seen_ & bit)
-        names += (names.empty() ? "" : "; ") + std::string(warningName(bit));
-    addKeyValue(d, "warnings_seen_names", names.empty() ? "none" : names);
-  }
-  addNumber(d, "wind_3s", last_wind_3s_);
-  addKeyValue(d, "rope_model", model_.scene.rope.model);
-  twin_->diagnose(*sim_, d);
-  a.status.push_back(d);
-  usage_->publish(stamp(sim_->time()), ros::this_node::getName(), a);
+  a.status.push_back(simulationStatus(r));
+  twin_->diagnose(*sim_, a.status.back());
+  usage_->publish(stamp(sim_->time()), r.node_name, a);
   diag_pub_.publish(a);
 }
 
@@ -588,8 +342,9 @@ void CraneSimNode::run() {
   pacing.time_step = dt;
   pacing.follow_clock = settings_.follow_clock;
   pacer_ = std::make_unique<Pacer>(pacing);
-  const std::vector<const ros::Publisher*> own = {&state_pub_,   &joint_pub_, &marker_pub_,
-                                                  &applied_pub_, &diag_pub_,  &clock_pub_};
+  const std::vector<const ros::Publisher*> own = {&state_pub_,  &joint_pub_,
+                                                  &marker_pub_, &inputs_->appliedPublisher(),
+                                                  &diag_pub_,   &clock_pub_};
   bool awaiting_recorder = recorder_->enabled();
   if (!awaiting_recorder) publish();  // else once the recorder listens: the bag starts at t = 0
   next_publish_ = sim_->time() + period;

@@ -1,16 +1,15 @@
 // crane_sim_node (docs/ros.md): a thin ROS 1 adapter over the ROS-free simulation. It owns one
-// Simulation, paces it (real_time_factor), feeds it operator commands (checked by
-// command_guard, timed out by CommandWatchdog, or replayed from a bag), and publishes what
-// snapshotOf() computes. Nothing here is physics.
+// Simulation, paces it (Pacer: real_time_factor, lockstep, another node's /clock), lets
+// CommandInputs drive it (commands, trajectories, wind, a replayed bag) or the twin follow the
+// measured crane (TwinAdapter), and publishes what snapshotOf() computes, with the usage count
+// (UsageLink). Nothing here is physics.
 #pragma once
 
-#include <geometry_msgs/Vector3Stamped.h>
 #include <ros/ros.h>
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
-#include <trajectory_msgs/JointTrajectory.h>
 
 #include <deque>
 #include <memory>
@@ -18,11 +17,9 @@
 #include <string>
 #include <vector>
 
-#include "crane_twin/CraneCommand.h"
+#include "command_inputs.hpp"
 #include "crane_twin/SetPayload.h"
 #include "crane_twin/analysis/crane_snapshot.hpp"
-#include "crane_twin/drives/command_guard.hpp"
-#include "crane_twin/drives/trajectory_follower.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/simulation/lift_off_monitor.hpp"
 #include "crane_twin/simulation/pacer.hpp"
@@ -45,26 +42,11 @@ class CraneSimNode {
   bool finishedNormally() const { return finished_ && !failed_; }
 
  private:
-  struct Replayed {
-    double t;
-    CommandEntry command;
-  };
   ros::NodeHandle nh_, pnh_;
   NodeSettings settings_;
   CraneModel model_;
   std::unique_ptr<Simulation> sim_;
-  CommandWatchdog watchdog_;
-  std::deque<Replayed> replay_;  ///< commands still to apply, by simulated time
-  std::vector<Replayed> replay_all_;
-
-  ros::Subscriber command_sub_, trajectory_sub_, wind_sub_;
-  double base_yaw_ = 0.0;  ///< the crane's frame turned about z on the site [rad]
-  std::optional<Eigen::Vector3d> measured_wind_;  ///< crane frame, re-applied after a restart
-  ros::Publisher goal_pub_;
-  TrajectoryFollower follower_;
-  void onTrajectory(const trajectory_msgs::JointTrajectory::ConstPtr& msg);
-  /// The follower's rate command for this step; crane/goal_reached when it is done.
-  void followTrajectory();
+  std::unique_ptr<CommandInputs> inputs_;  ///< commands, trajectories, wind, replay
   std::vector<ros::Subscriber> follower_subs_;
   std::vector<double> follower_t_;  ///< latest simulated time of each clock follower [s]
   CraneState last_state_;           ///< the last crane/state published
@@ -78,16 +60,15 @@ class CraneSimNode {
   void publishPaused();
   /// Publish at once and start the next publication period (after ~reset, ~set_payload).
   void publishNow();
-  void publishGoalReached(bool reached);
   ros::WallTime last_state_wall_;  ///< when it was last (re)published
   ros::WallTime last_clock_wall_;  ///< when /clock was last repeated while waiting (lockstep)
-  ros::Publisher joint_pub_, state_pub_, marker_pub_, clock_pub_, diag_pub_, applied_pub_;
+  ros::Publisher joint_pub_, state_pub_, marker_pub_, clock_pub_, diag_pub_;
   ros::ServiceServer reset_srv_, pause_srv_, payload_srv_;
   /// Simulated time before the current simulation started [s] (a load change runs time on).
   double t_offset_ = 0.0;
   bool onSetPayload(SetPayload::Request& req, SetPayload::Response& res);
   /// A new simulation of model_ from t_offset_ on, keeping the stamps' origin.
-  void restartSimulation();
+  void restartSimulation(CommandInputs::Start start);
   /// The twin takes the payload mass its load cell found: the running simulation continues
   /// with it (withPayloadMass, continueWithModel; docs/twin.md "Picks and set-downs").
   void takeMeasuredPayload(double mass);
@@ -111,23 +92,17 @@ class CraneSimNode {
   ros::WallTime last_publish_wall_;
   ros::WallTime last_structure_wall_;  ///< last publication of the structure's marker
   double last_step_cost_ = 0.0, last_rtf_ = 0.0;
-  long steps_ = 0, rejected_ = 0;
+  long steps_ = 0;
   std::unique_ptr<Pacer> pacer_;  ///< when the loop may step (run())
   int warnings_seen_ = 0;
   double last_wind_3s_ = 0.0;  ///< 3 s mean wind at the jib in the last publication [m/s]
   ros::WallTime last_warn_wall_, last_diag_wall_;
 
-  void loadReplay();
   void resetSimulation();
   bool stepOnce();
-  void applyDueCommands();
-  void apply(const CommandEntry& c, const char* source);
   void publish();
   void publishDiagnostics();
   ros::Time stamp(double t) const;
-  void warnThrottled(const std::string& what);
-  void onCommand(const CraneCommand::ConstPtr& msg);
-  void onWind(const geometry_msgs::Vector3Stamped::ConstPtr& msg);
   bool onReset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res);
   bool onPause(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res);
 };

@@ -154,6 +154,22 @@ CraneModel withPayloadMass(const CraneModel& model, double payload_mass) {
   return withScene(model, s);
 }
 
+CraneModel withPayloadPickedUp(const CraneModel& model, const CraneDrives& drives,
+                               double payload_mass) {
+  Scene s = model.scene;
+  s.payload_mass = payload_mass;
+  if (s.crane) {
+    s.slew_angle = drives.slewAngle();
+    s.trolley_radius = drives.trolleyRadius();
+    s.rope.length = drives.hoistLength();
+  }
+  s.initial_mode = "equilibrium";
+  s.swing_deg = 0.0;
+  s.payload_velocity = Eigen::Vector3d::Zero();
+  s.commands.clear();
+  return withScene(model, s);
+}
+
 GeneralizedAlpha integratorFor(const Scene& sc) {
   return sc.integrator == "newmark" ? GeneralizedAlpha::newmark()
                                     : GeneralizedAlpha::fromRhoInf(sc.rho_inf);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "crane_twin/drives/crane_drives.hpp"
 #include "crane_twin/elements/ground_contact.hpp"
 #include "crane_twin/integrators/generalized_alpha.hpp"
 #include "crane_twin/io/scene.hpp"
@@ -100,6 +101,13 @@ CraneModel withScene(const CraneModel& model, const Scene& scene);
 /// docs/twin.md "Picks and set-downs"), everything else kept, payload.height included.
 /// Throws what withScene throws (payload.mass named).
 CraneModel withPayloadMass(const CraneModel& model, double payload_mass);
+
+/// A new load of `payload_mass` [kg] picked up where the crane stands (the node's ~set_payload,
+/// docs/ros.md "Changing the load"): the drives' slew angle, trolley radius and hoist length as
+/// the scene's pose, the load hanging at rest (initial.mode equilibrium, no swing, no
+/// commands), everything else kept. Throws what withScene throws.
+CraneModel withPayloadPickedUp(const CraneModel& model, const CraneDrives& drives,
+                               double payload_mass);
 
 /// The scene's ground under the payload (docs/model.md "Ground contact"): `ground:`'s height,
 /// stiffness and friction, the payload's height (payload.height), and the damper
