@@ -2,8 +2,6 @@
 
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <ros/master.h>
-#include <rosgraph_msgs/Clock.h>
-#include <sensor_msgs/JointState.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -49,13 +47,8 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   resetSimulation();
   recorder_ =
       std::make_unique<RecorderLink>(nh_, settings_.wait_for_recorder, settings_.recorded_topics);
-  // Queues for bursts: as fast as possible a recorder takes every publication.
-  joint_pub_ = nh_.advertise<sensor_msgs::JointState>("joint_states", 1000);
-  state_pub_ = nh_.advertise<CraneState>("crane/state", 1000);  // rtf 0: bursts
-  marker_pub_ = nh_.advertise<visualization_msgs::MarkerArray>("crane/rope", 200);
+  out_ = std::make_unique<StatePublisher>(nh_, settings_, frames_, base, yaw);
   diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 5);
-  if (settings_.publish_clock) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
-  static_tf_.sendTransform(toBaseTransform(frames_, base, yaw, ros::Time::now()));
   follower_t_.assign(settings_.clock_followers.size(), -std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < settings_.clock_followers.size(); ++i) {
     follower_subs_.push_back(nh_.subscribe<CraneState>(
@@ -235,14 +228,7 @@ void CraneSimNode::publish() {
   last_publish_sim_ = t;
   last_publish_wall_ = now;
 
-  // The structure's segments at most structure_marker_rate times per wall second (rviz keeps
-  // the last marker of an id); the first publication always carries them.
-  SnapshotOptions options = settings_.snapshot;
-  options.structure_segments =
-      last_structure_wall_.isZero() ||
-      (now - last_structure_wall_).toSec() >= 1.0 / settings_.structure_marker_rate;
-  if (options.structure_segments) last_structure_wall_ = now;
-  CraneSnapshot s = snapshotOf(*sim_, options);
+  CraneSnapshot s = snapshotOf(*sim_, out_->optionsNow(now));
   // A twin reading a load cell: landed as the load cell sees it, for crane/state, the lift-offs
   // and the usage (its own load may bounce where the real one does not; docs/twin.md).
   if (const std::optional<bool> landed = twin_->loadCellLanded()) {
@@ -253,31 +239,8 @@ void CraneSimNode::publish() {
   s.series.warnings |= lift_off_.warningFor(model_.scene.hoist_design_phi2);
   warnings_seen_ |= s.series.warnings;
   last_wind_3s_ = s.series.wind_3s;
-  if (settings_.publish_clock) {
-    rosgraph_msgs::Clock c;
-    c.clock = st;
-    clock_pub_.publish(c);
-  }
-  joint_pub_.publish(toJointState(s, st));
-  recorder_->published(joint_pub_);
-  tf_.sendTransform(toTransforms(s, st + tf_stamp_offset_, frames_));
-  const double payload_mass = model_.scene.payload_mass;
-  const std::optional<double> ground =
-      model_.scene.ground ? std::optional<double>(model_.scene.ground->height) : std::nullopt;
-  marker_pub_.publish(toMarkers(s, st, loadShapes(s, model_.scene.hookBlockMass(), payload_mass),
-                                payload_mass, frames_, ground));
-  recorder_->published(marker_pub_);
-  last_state_ = toStateMessage(s, st, last_step_cost_, last_rtf_, model_.scene.rope.model, frames_);
-  last_state_.t += t_offset_;
-  last_state_.payload_mass_estimate = model_.scene.payload_mass;
-  last_state_.stress_names.clear();
-  if (model_.hot_spots) {
-    for (const HotSpotRow& r : model_.hot_spots->rows) last_state_.stress_names.push_back(r.name);
-  }
-  last_state_.lift_offs = lift_off_.liftOffs();
-  last_state_.lift_off_factor = lift_off_.factor();
-  state_pub_.publish(last_state_);
-  recorder_->published(state_pub_);
+  last_state_ = out_->stateMessage(s, st, last_step_cost_, last_rtf_, model_, t_offset_, lift_off_);
+  out_->publish(s, last_state_, model_, st, tf_stamp_offset_, *recorder_);
   last_state_wall_ = now;
   if (!failed_) twin_->publish(*sim_, st, forecastCommand(), [this](double t) { return stamp(t); });
 }
@@ -342,9 +305,9 @@ void CraneSimNode::run() {
   pacing.time_step = dt;
   pacing.follow_clock = settings_.follow_clock;
   pacer_ = std::make_unique<Pacer>(pacing);
-  const std::vector<const ros::Publisher*> own = {&state_pub_,  &joint_pub_,
-                                                  &marker_pub_, &inputs_->appliedPublisher(),
-                                                  &diag_pub_,   &clock_pub_};
+  std::vector<const ros::Publisher*> own = out_->publishers();
+  own.push_back(&inputs_->appliedPublisher());
+  own.push_back(&diag_pub_);
   bool awaiting_recorder = recorder_->enabled();
   if (!awaiting_recorder) publish();  // else once the recorder listens: the bag starts at t = 0
   next_publish_ = sim_->time() + period;
@@ -399,17 +362,14 @@ void CraneSimNode::run() {
       // A follower waits for the clock while we wait for it: a clock message sent before its
       // subscription connected is lost, so repeat the clock now and then.
       if ((now - last_clock_wall_).toSec() >= 0.2) {
-        rosgraph_msgs::Clock c;
-        c.clock = stamp(sim_->time());
-        clock_pub_.publish(c);
+        out_->publishClock(stamp(sim_->time()));
         last_clock_wall_ = now;
       }
     } else if (pace.wait == Pacer::Wait::clock) {
       // Waiting for the clock: its owner may be waiting for our state (lockstep), and a
       // message sent before its subscription connected is lost, so repeat it now and then.
       if ((now - last_state_wall_).toSec() >= 0.2) {
-        state_pub_.publish(last_state_);
-        recorder_->published(state_pub_);
+        out_->republish(last_state_, *recorder_);
         last_state_wall_ = now;
       }
     }

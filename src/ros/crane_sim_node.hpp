@@ -8,8 +8,6 @@
 #include <ros/ros.h>
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
-#include <tf2_ros/static_transform_broadcaster.h>
-#include <tf2_ros/transform_broadcaster.h>
 
 #include <deque>
 #include <memory>
@@ -27,6 +25,7 @@
 #include "node_settings.hpp"
 #include "recorder_link.hpp"
 #include "ros_messages.hpp"
+#include "state_publisher.hpp"
 #include "twin_adapter.hpp"
 #include "usage_link.hpp"
 
@@ -60,9 +59,10 @@ class CraneSimNode {
   void publishPaused();
   /// Publish at once and start the next publication period (after ~reset, ~set_payload).
   void publishNow();
-  ros::WallTime last_state_wall_;  ///< when it was last (re)published
-  ros::WallTime last_clock_wall_;  ///< when /clock was last repeated while waiting (lockstep)
-  ros::Publisher joint_pub_, state_pub_, marker_pub_, clock_pub_, diag_pub_;
+  ros::WallTime last_state_wall_;        ///< when it was last (re)published
+  ros::WallTime last_clock_wall_;        ///< when /clock was last repeated while waiting (lockstep)
+  std::unique_ptr<StatePublisher> out_;  ///< joints, TF, markers, crane/state, /clock
+  ros::Publisher diag_pub_;
   ros::ServiceServer reset_srv_, pause_srv_, payload_srv_;
   /// Simulated time before the current simulation started [s] (a load change runs time on).
   double t_offset_ = 0.0;
@@ -76,8 +76,6 @@ class CraneSimNode {
   /// What the forecast assumes the drives are asked: the measured rates, the trajectory being
   /// followed, or the operator's command held.
   PayloadForecaster::CommandSource forecastCommand() const;
-  tf2_ros::TransformBroadcaster tf_;
-  tf2_ros::StaticTransformBroadcaster static_tf_;
   CraneFrames frames_;
 
   bool paused_ = false, finished_ = false, failed_ = false;
@@ -90,7 +88,6 @@ class CraneSimNode {
   long steps_since_publish_ = 0;
   double last_publish_sim_ = 0.0;
   ros::WallTime last_publish_wall_;
-  ros::WallTime last_structure_wall_;  ///< last publication of the structure's marker
   double last_step_cost_ = 0.0, last_rtf_ = 0.0;
   long steps_ = 0;
   std::unique_ptr<Pacer> pacer_;  ///< when the loop may step (run())
