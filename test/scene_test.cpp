@@ -68,9 +68,9 @@ TEST(Scene, DefaultsAndOverrides) {
   const Scene s = loadScene(p, {"rope.elements=40", "initial.payload_velocity=[0,0,3]"});
   EXPECT_EQ(s.rope.elements, 40);
   EXPECT_DOUBLE_EQ(s.payload_velocity.z(), 3.0);
-  EXPECT_EQ(s.integrator, "generalized_alpha");
+  EXPECT_EQ(s.integrator, IntegratorKind::generalized_alpha);
   EXPECT_DOUBLE_EQ(s.rho_inf, 0.9);
-  EXPECT_EQ(s.structure_model, "rigid");
+  EXPECT_EQ(s.structure_model, StructureModel::rigid);
   EXPECT_DOUBLE_EQ(s.rope.axial_stiffness, 2.2e7);
 }
 

@@ -250,7 +250,7 @@ TEST(WithPayloadPickedUp, HangsTheNewLoadAtRestWhereTheDrivesStand) {
   EXPECT_EQ(picked.scene.rope.length, d.hoistLength());
   EXPECT_NE(picked.scene.trolley_radius, m.scene.trolley_radius);  // the drives moved
   EXPECT_TRUE(picked.scene.commands.empty());
-  EXPECT_EQ(picked.scene.initial_mode, "equilibrium");
+  EXPECT_EQ(picked.scene.initial_mode, InitialMode::equilibrium);
   std::unique_ptr<Simulation> next = makeSimulation(picked);
   next->initialize();
   const SeriesValues v = next->series();

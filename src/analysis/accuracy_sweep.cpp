@@ -79,8 +79,9 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
       quick ? std::vector<double>{0.001, 0.01} : std::vector<double>{0.001, 0.005, 0.01};
   // The subdomain rungs run in the rope chord's frame (docs/accuracy-vs-time.md), unless the
   // scene itself chooses the subdomain reduction and its frame.
-  const std::string frame =
-      scene.rope.reduction == "subdomains" ? scene.rope.subdomain_frame : "corotational";
+  const std::string frame = scene.rope.reduction == RopeReduction::subdomains
+                                ? scene.rope.subdomain_frame
+                                : "corotational";
   for (int m : modes)
     for (double d : deltas)
       for (double dt : steps) {
@@ -148,7 +149,7 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
                    scene.structure_model,
                    "fixed"});
     }
-    if (scene.crane && scene.structure_model == "modal") {
+    if (scene.crane && scene.structure_model == StructureModel::modal) {
       g.push_back({"reduced",
                    {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=10",
                     "rope.subdomain_delta=0.2", "time_step=0.005", "structure.modes=20"},
@@ -156,7 +157,7 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
                    10,
                    0.2,
                    20,
-                   "modal",
+                   StructureModel::modal,
                    frame});
     }
   }
@@ -172,27 +173,28 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
                  scene.structure_model});
   }
   // The fidelity ladder: the pendulum rope, and the rigid structure under each rope model.
-  auto pendulum = [&](double dt, int structureModes, const std::string& structure) {
+  auto pendulum = [&](double dt, int structureModes, StructureModel structure) {
     std::vector<std::string> o = {"rope.model=pendulum", "time_step=" + num(dt),
-                                  "structure.model=" + structure};
-    if (structure != "rigid") o.push_back("structure.modes=" + std::to_string(structureModes));
-    g.push_back({"pendulum", o, dt, 0, 0.0, structure == "rigid" ? 0 : structureModes, structure});
+                                  std::string("structure.model=") + name(structure)};
+    const bool rigid = structure == StructureModel::rigid;
+    if (!rigid) o.push_back("structure.modes=" + std::to_string(structureModes));
+    g.push_back({"pendulum", o, dt, 0, 0.0, rigid ? 0 : structureModes, structure});
   };
-  const bool flexible = scene.crane && scene.structure_model != "rigid";
+  const bool flexible = scene.crane && scene.structure_model != StructureModel::rigid;
   for (double dt : quick ? std::vector<double>{0.01} : std::vector<double>{0.001, 0.01, 0.05}) {
     pendulum(dt, scene.structure_modes, scene.structure_model);
   }
   if (!quick && flexible) {
-    if (scene.structure_model == "modal") pendulum(0.01, 20, "modal");
-    pendulum(0.001, 0, "rigid");
-    pendulum(0.01, 0, "rigid");
+    if (scene.structure_model == StructureModel::modal) pendulum(0.01, 20, StructureModel::modal);
+    pendulum(0.001, 0, StructureModel::rigid);
+    pendulum(0.01, 0, StructureModel::rigid);
     g.push_back({"full",
                  {"rope.model=full", "time_step=0.01", "structure.model=rigid"},
                  0.01,
                  0,
                  0.0,
                  0,
-                 "rigid"});
+                 StructureModel::rigid});
     g.push_back({"reduced",
                  {"rope.model=reduced", "rope.reduction=subdomains", "rope.mode_count=10",
                   "rope.subdomain_delta=0.2", "time_step=0.005", "structure.model=rigid"},
@@ -200,7 +202,7 @@ std::vector<SweepCase> sweepGrid(const Scene& scene, bool quick) {
                  10,
                  0.2,
                  0,
-                 "rigid",
+                 StructureModel::rigid,
                  frame});
   }
   // Every subdomain rung names its frame (a scene of the default reduced rope sets none).
@@ -271,7 +273,8 @@ std::string sweepRow(const std::string& scene, const SweepResult& r) {
   s << scene << ',' << c.model << ',' << c.time_step << ',' << c.rope_modes << ',' << c.delta << ','
     << c.structure_modes << ',' << r.wall_s << ',' << r.rtf << ',' << r.subdomains << ','
     << r.mode_updates_s << ',' << r.error.payload_max << ',' << r.error.rope_rms_max << ','
-    << r.error.cab_max << ',' << r.error.jib_tip_max << ',' << c.structure_model << ',' << c.frame;
+    << r.error.cab_max << ',' << r.error.jib_tip_max << ',' << name(c.structure_model) << ','
+    << c.frame;
   return s.str();
 }
 

@@ -56,14 +56,16 @@ int runInfo(const SceneArgs& a) {
   std::printf("rope_dofs,%d\n", m.ropeDofs());
   std::printf("rope_mass,%.3f\n", m.ropeMass());
   // Beyond docs/cli.md's required keys: what was built and the static load check of docs/model.md.
-  std::printf("structure_model,%s\n", m.scene.structure_model.c_str());
-  std::printf("rope_model,%s\n", m.scene.rope.model.c_str());
+  std::printf("structure_model,%s\n", ct::name(m.scene.structure_model));
+  std::printf("rope_model,%s\n", ct::name(m.scene.rope.model));
   std::printf("end_mass,%.1f\n", m.end_mass);
   // What a run of this scene integrates (only what the scene calls for is built).
   const ct::Scene& sc = m.scene;
   int structureCoords = 0;
-  if (m.structure && sc.structure_model == "modal") structureCoords = sc.structure_modes;
-  if (m.structure && sc.structure_model == "full") structureCoords = m.structure->free_dofs;
+  if (m.structure && sc.structure_model == ct::StructureModel::modal)
+    structureCoords = sc.structure_modes;
+  if (m.structure && sc.structure_model == ct::StructureModel::full)
+    structureCoords = m.structure->free_dofs;
   std::printf("integrated_structure_coordinates,%d\n", structureCoords);
   const bool pendulum = ct::ropeModelOf(sc) == ct::RopeModelKind::pendulum;
   std::printf("integrated_rope_coordinates,%d\n", ct::integratedRopeCoordinates(m));
@@ -71,9 +73,11 @@ int runInfo(const SceneArgs& a) {
   std::printf("rope_bending,%s\n", sc.rope.bending && !pendulum ? "on" : "off");
   std::printf("rope_damping_s,%g\n", sc.rope.damping);
   std::printf("structural_damping_ratio,%g\n",
-              m.structure && sc.structure_model != "rigid" ? sc.structure_damping_ratio : 0.0);
+              m.structure && sc.structure_model != ct::StructureModel::rigid
+                  ? sc.structure_damping_ratio
+                  : 0.0);
   std::printf("slewing_inertial_loads,%s\n", sc.slew_inertial_loads ? "on" : "off");
-  std::printf("slewing_drive,%s\n", sc.slew_drive.model.c_str());
+  std::printf("slewing_drive,%s\n", ct::name(sc.slew_drive.model));
   std::printf("rope_tension_only,%s\n", sc.rope.tension_only ? "on" : "off");
   std::printf("rope_safety_factor,%g\n", sc.rope.safety_factor);
   std::printf("rope_reeving_length_m,%g\n", sc.rope.reeving_length);
@@ -249,7 +253,7 @@ void printStresses(const ct::CraneModel& m, const Eigen::VectorXd& z) {
 int runStatic(const SceneArgs& a) {
   const ct::CraneModel m = ct::buildCraneModel(ct::loadScene(a.scene, a.sets));
   Eigen::Vector3d H;
-  if (m.scene.rope.model == "pendulum") {
+  if (m.scene.rope.model == ct::RopeModel::pendulum) {
     ct::PendulumCraneSimulation sim(m);
     const ct::CoupledState s = sim.staticState(&H);
     const Eigen::Vector3d p = s.q.tail<3>();

@@ -15,7 +15,7 @@ bool moves(const CommandEntry& c) {
 
 CraneDrives::CraneDrives(const Scene& scene, double slew_inertia)
     : scene_(scene), slew_inertia_(slew_inertia) {
-  if (scene.slew_drive.model == "torque" && !(slew_inertia > 0.0)) {
+  if (scene.slew_drive.model == SlewDriveModel::torque && !(slew_inertia > 0.0)) {
     throw InputError(scene.file +
                      ": key 'slewing.drive.model': the torque drive needs the "
                      "rotating part's inertia (a crane structure)");
@@ -40,7 +40,7 @@ void CraneDrives::reset() {
   hoist_.emplace(c.hoist, scene_.rope.length, c.min_rope_length, c.max_rope_length);
   slew_torque_.reset();
   const SlewDriveSettings& d = scene_.slew_drive;
-  if (d.model == "torque") {
+  if (d.model == SlewDriveModel::torque) {
     slew_torque_.emplace(slew_inertia_, d.max_torque, d.stiffness, d.damping, scene_.slew_angle);
   }
 }

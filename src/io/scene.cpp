@@ -12,7 +12,64 @@
 
 namespace crane_twin {
 
+const char* name(RopeModel m) {
+  switch (m) {
+    case RopeModel::pendulum:
+      return "pendulum";
+    case RopeModel::full:
+      return "full";
+    case RopeModel::reduced:
+      return "reduced";
+  }
+  return "?";
+}
+
+const char* name(RopeReduction r) {
+  return r == RopeReduction::subdomains ? "subdomains" : "invariant";
+}
+
+const char* name(StructureModel m) {
+  switch (m) {
+    case StructureModel::rigid:
+      return "rigid";
+    case StructureModel::modal:
+      return "modal";
+    case StructureModel::full:
+      return "full";
+  }
+  return "?";
+}
+
+const char* name(InitialMode m) {
+  switch (m) {
+    case InitialMode::equilibrium:
+      return "equilibrium";
+    case InitialMode::stress_free:
+      return "stress_free";
+    case InitialMode::landed:
+      return "landed";
+  }
+  return "?";
+}
+
+const char* name(IntegratorKind i) {
+  return i == IntegratorKind::newmark ? "newmark" : "generalized_alpha";
+}
+
+const char* name(SlewDriveModel m) { return m == SlewDriveModel::torque ? "torque" : "kinematic"; }
+
 namespace {
+
+// The choice `key` names among `all` (their name()s; default `def`): read once, here.
+template <typename E>
+E choice(ConfigNode& n, const std::string& key, E def, std::initializer_list<E> all) {
+  std::vector<std::string> words;
+  for (E e : all) words.push_back(name(e));
+  const std::string word = n.string(key, std::string(name(def)), words);
+  for (E e : all)
+    if (word == name(e)) return e;
+  return def;  // not reached: string() refuses any other word
+}
 
 // A key whose value must lie within a crane's limits [lo, hi] (what names the limits).
 void checkWithin(ConfigNode& n, const std::string& key, double value, double lo, double hi,
@@ -69,22 +126,25 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   }
   {
     ConfigNode n = root.map("integrator");
-    s.integrator = n.string("method", "generalized_alpha", {"generalized_alpha", "newmark"});
+    s.integrator = choice(n, "method", IntegratorKind::generalized_alpha,
+                          {IntegratorKind::generalized_alpha, IntegratorKind::newmark});
     s.rho_inf = n.number("rho_inf", 0.9, Bounds::closed(0.0, 1.0));
     n.finish();
   }
   {
     ConfigNode n = root.map("structure");
-    s.structure_model = n.string("model", s.crane ? "modal" : "rigid", {"rigid", "modal", "full"});
+    s.structure_model =
+        choice(n, "model", s.crane ? StructureModel::modal : StructureModel::rigid,
+               {StructureModel::rigid, StructureModel::modal, StructureModel::full});
     s.structure_modes = n.integer("modes", 100, 1, 100000);
     s.structure_damping_ratio = n.number("damping_ratio", 0.01, Bounds::closed(0.0, 1.0));
     s.structure_geometric_stiffness = n.boolean("geometric_stiffness", false);
     n.finish();
-    if (s.structure_geometric_stiffness && s.structure_model == "rigid") {
+    if (s.structure_geometric_stiffness && s.structure_model == StructureModel::rigid) {
       n.fail("geometric_stiffness",
              "acts on a flexible structure (structure.model: modal or full)");
     }
-    if (!s.crane && s.structure_model != "rigid") {
+    if (!s.crane && s.structure_model != StructureModel::rigid) {
       root.fail("structure.model", "must be rigid with crane: none");
     }
   }
@@ -92,8 +152,10 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     ConfigNode n = root.map("rope", true);
     RopeSettings& r = s.rope;
     const RopeSpec def = s.crane ? s.crane->rope : RopeSpec{};
-    r.model = n.string("model", "reduced", {"pendulum", "full", "reduced"});
-    r.reduction = n.string("reduction", "invariant", {"invariant", "subdomains"});
+    r.model = choice(n, "model", RopeModel::reduced,
+                     {RopeModel::pendulum, RopeModel::full, RopeModel::reduced});
+    r.reduction = choice(n, "reduction", RopeReduction::invariant,
+                         {RopeReduction::invariant, RopeReduction::subdomains});
     r.elements = n.integer("elements", 120, 1, 100000);
     r.length = n.number("length", std::nullopt, Bounds::positive());
     r.falls = n.integer("falls", def.falls, 1, 12);
@@ -117,7 +179,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     n.finish();
     // The subdomain reduction's own keys mean nothing to the default reduced rope: refused there
     // rather than silently ignored (docs/scenes.md).
-    if (r.model == "reduced" && r.reduction == "invariant") {
+    if (r.model == RopeModel::reduced && r.reduction == RopeReduction::invariant) {
       for (const char* key : {"mode_fraction", "subdomain_delta", "mode_update",
                               "subdomain_residual", "subdomain_frame", "subdomain_rotation"}) {
         if (n.has(key)) {
@@ -169,12 +231,13 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     s.slew_angle = n.number("angle", 0.0, Bounds::any());
     // On by default wherever the structure is flexible: the loads vanish while the crane does
     // not slew, and a node's command may slew any scene.
-    s.slew_inertial_loads = n.boolean("inertial_loads", s.structure_model != "rigid");
+    s.slew_inertial_loads = n.boolean("inertial_loads", s.structure_model != StructureModel::rigid);
     if (n.has("drive")) {
       ConfigNode d = n.map("drive");
       SlewDriveSettings& dr = s.slew_drive;
-      dr.model = d.string("model", "kinematic", {"kinematic", "torque"});
-      if (dr.model == "torque") {
+      dr.model = choice(d, "model", SlewDriveModel::kinematic,
+                        {SlewDriveModel::kinematic, SlewDriveModel::torque});
+      if (dr.model == SlewDriveModel::torque) {
         if (!s.crane) d.fail("model", "a slewing drive needs a crane (crane: none has none)");
         dr.max_torque = d.number("max_torque", std::nullopt, Bounds::positive());
         dr.stiffness = d.number("stiffness", 0.0, Bounds::nonNegative());
@@ -196,15 +259,18 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   }
   {
     ConfigNode n = root.map("initial");
-    s.initial_mode = n.string("mode", "equilibrium", {"equilibrium", "stress_free", "landed"});
+    s.initial_mode =
+        choice(n, "mode", InitialMode::equilibrium,
+               {InitialMode::equilibrium, InitialMode::stress_free, InitialMode::landed});
     s.swing_deg = n.number("swing_deg", 0.0, Bounds::closed(0.0, 180.0));
     s.swing_azimuth_deg = n.number("swing_azimuth_deg", 0.0, Bounds::any());
     s.payload_velocity = n.vec3("payload_velocity", Eigen::Vector3d::Zero());
     if (n.has("payload_offset")) {
-      if (s.initial_mode != "landed") n.fail("payload_offset", "only used with mode: landed");
+      if (s.initial_mode != InitialMode::landed)
+        n.fail("payload_offset", "only used with mode: landed");
       s.payload_offset = n.vec2("payload_offset");
     }
-    if (s.initial_mode == "landed") {
+    if (s.initial_mode == InitialMode::landed) {
       for (const char* k : {"swing_deg", "swing_azimuth_deg", "payload_velocity"}) {
         if (n.has(k)) n.fail(k, "not used with mode: landed (the payload starts at rest)");
       }
@@ -218,7 +284,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
       }
     }
     n.finish();
-    if (s.initial_mode == "equilibrium" && s.swing_deg >= 90.0) {
+    if (s.initial_mode == InitialMode::equilibrium && s.swing_deg >= 90.0) {
       n.fail("swing_deg", "must be below 90 for an equilibrium start (use mode: stress_free)");
     }
   }
@@ -250,7 +316,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
                 "with crane: none the anchor must stand above the ground (z > 0): the "
                 "wind's profile is measured from z = 0");
     }
-    if (s.rope.model == "reduced" && s.rope.reduction == "subdomains") {
+    if (s.rope.model == RopeModel::reduced && s.rope.reduction == RopeReduction::subdomains) {
       root.fail("wind",
                 "the subdomain reduced rope (rope.reduction: subdomains) takes no wind; "
                 "use rope.reduction: invariant, rope.model: full or pendulum");
@@ -276,7 +342,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     if (!(s.payload_mass + s.hook_mass > 0.0)) {
       root.fail("ground", "needs a load on the rope (payload.mass or hook.mass > 0) to land");
     }
-    if (s.rope.model == "reduced" && s.rope.reduction == "subdomains") {
+    if (s.rope.model == RopeModel::reduced && s.rope.reduction == RopeReduction::subdomains) {
       root.fail("ground",
                 "the subdomain reduced rope (rope.reduction: subdomains) takes no ground; "
                 "use rope.reduction: invariant, rope.model: full or pendulum");

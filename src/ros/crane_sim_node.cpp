@@ -58,11 +58,11 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
   reset_srv_ = pnh_.advertiseService("reset", &CraneSimNode::onReset, this);
   pause_srv_ = pnh_.advertiseService("pause", &CraneSimNode::onPause, this);
   payload_srv_ = pnh_.advertiseService("set_payload", &CraneSimNode::onSetPayload, this);
-  const bool ancf = model_.scene.rope.model != "pendulum";
+  const bool ancf = model_.scene.rope.model != RopeModel::pendulum;
   ROS_INFO(
       "crane_sim_node: scene %s, rope model %s%s%s, time step %g s, "
       "real_time_factor %g%s%s",
-      settings_.scene.c_str(), model_.scene.rope.model.c_str(), ancf ? ", rope elements " : "",
+      settings_.scene.c_str(), name(model_.scene.rope.model), ancf ? ", rope elements " : "",
       ancf ? std::to_string(model_.scene.rope.elements).c_str() : "", model_.scene.time_step,
       settings_.real_time_factor, settings_.publish_clock ? ", publishing /clock" : "",
       settings_.command_bag.empty() ? "" : ", replaying commands from a bag");
@@ -273,7 +273,7 @@ void CraneSimNode::publishDiagnostics() {
   NodeRunRecord r;
   r.node_name = ros::this_node::getName();
   r.scene_file = model_.scene.file;
-  r.rope_model = model_.scene.rope.model;
+  r.rope_model = name(model_.scene.rope.model);
   r.paused = paused_;
   r.finished = finished_;
   if (failed_) r.failure = failure_;

@@ -39,7 +39,7 @@ CraneState StatePublisher::stateMessage(const CraneSnapshot& s, const ros::Time&
                                         const CraneModel& model, double t_offset,
                                         const LiftOffMonitor& lift_off) const {
   CraneState m =
-      toStateMessage(s, stamp, step_cost, real_time_factor, model.scene.rope.model, frames_);
+      toStateMessage(s, stamp, step_cost, real_time_factor, name(model.scene.rope.model), frames_);
   m.t += t_offset;
   m.payload_mass_estimate = model.scene.payload_mass;
   if (model.hot_spots) {

@@ -47,7 +47,7 @@ void setRopeAndLoad(CraneModel& m) {
 void computeStructureModes(CraneModel& m) {
   m.structure_modal_basis.reset();
   const Scene& sc = m.scene;
-  if (!m.structure || sc.structure_model == "rigid") return;
+  if (!m.structure || sc.structure_model == StructureModel::rigid) return;
   if (sc.structure_modes >= m.structure->free_dofs) return;  // makeRopeSupport refuses it
   ModalOptions opt;
   opt.count = sc.structure_modes;
@@ -59,10 +59,11 @@ void computeStructureModes(CraneModel& m) {
 void computeHotSpots(CraneModel& m) {
   m.hot_spots.reset();
   const Scene& sc = m.scene;
-  if (!m.structure || !sc.crane || sc.crane->hot_spots.empty() || sc.structure_model == "rigid") {
+  if (!m.structure || !sc.crane || sc.crane->hot_spots.empty() ||
+      sc.structure_model == StructureModel::rigid) {
     return;
   }
-  if (sc.structure_model == "modal" && !m.structure_modal_basis) return;
+  if (sc.structure_model == StructureModel::modal && !m.structure_modal_basis) return;
   const TowerCraneStructure& st = *m.structure;
   auto t = std::make_shared<HotSpotTable>();
   try {
@@ -72,7 +73,7 @@ void computeHotSpots(CraneModel& m) {
   }
   const Eigen::VectorXd u_sw = staticDisplacement(st, selfWeightLoad(st, sc.gravity));
   const int n = static_cast<int>(t->rows.size());
-  const bool modal = sc.structure_model == "modal";
+  const bool modal = sc.structure_model == StructureModel::modal;
   t->self_weight.resize(n);
   t->per_coordinate.setZero(n, modal ? m.structure_modal_basis->phi.cols() : st.free_dofs);
   for (int i = 0; i < n; ++i) {
@@ -163,7 +164,7 @@ CraneModel withPayloadPickedUp(const CraneModel& model, const CraneDrives& drive
     s.trolley_radius = drives.trolleyRadius();
     s.rope.length = drives.hoistLength();
   }
-  s.initial_mode = "equilibrium";
+  s.initial_mode = InitialMode::equilibrium;
   s.swing_deg = 0.0;
   s.payload_velocity = Eigen::Vector3d::Zero();
   s.commands.clear();
@@ -171,8 +172,8 @@ CraneModel withPayloadPickedUp(const CraneModel& model, const CraneDrives& drive
 }
 
 GeneralizedAlpha integratorFor(const Scene& sc) {
-  return sc.integrator == "newmark" ? GeneralizedAlpha::newmark()
-                                    : GeneralizedAlpha::fromRhoInf(sc.rho_inf);
+  return sc.integrator == IntegratorKind::newmark ? GeneralizedAlpha::newmark()
+                                                  : GeneralizedAlpha::fromRhoInf(sc.rho_inf);
 }
 
 std::optional<GroundContact> groundContactOf(const CraneModel& m) {

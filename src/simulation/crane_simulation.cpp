@@ -12,7 +12,7 @@ namespace {
 // The model, refused before the support (and its structural modes) is built where it asks for
 // a rope this simulation cannot carry.
 const CraneModel& ancfRopeModel(const CraneModel& m) {
-  if (m.scene.rope.model == "pendulum") {
+  if (m.scene.rope.model == RopeModel::pendulum) {
     throw InputError(m.scene.file +
                      ": key 'rope.model': the ANCF rope cannot run a pendulum "
                      "scene (makeSimulation builds PendulumCraneSimulation for it)");

@@ -107,16 +107,13 @@ std::vector<bool> Simulation::fullStatePositionBlocks() const {
 }
 
 RopeModelKind ropeModelOf(const Scene& sc) {
-  if (sc.rope.model == "full") return RopeModelKind::full;
-  if (sc.rope.model == "pendulum") return RopeModelKind::pendulum;
-  if (sc.rope.model != "reduced") {
-    throw InputError(sc.file + ": key 'rope.model': '" + sc.rope.model + "' is not built yet");
-  }
+  if (sc.rope.model == RopeModel::full) return RopeModelKind::full;
+  if (sc.rope.model == RopeModel::pendulum) return RopeModelKind::pendulum;
   // The reduced ropes' bases carry no rigging yet: a scene with one runs at full order, the
   // answer the reduced rope must give (docs/model.md "Hook block").
   if (sc.hasRigging()) return RopeModelKind::full;
-  return sc.rope.reduction == "subdomains" ? RopeModelKind::subdomain_reduced
-                                           : RopeModelKind::invariant_reduced;
+  return sc.rope.reduction == RopeReduction::subdomains ? RopeModelKind::subdomain_reduced
+                                                        : RopeModelKind::invariant_reduced;
 }
 
 int integratedRopeCoordinates(const CraneModel& m) {

@@ -17,7 +17,7 @@ namespace crane_twin {
 
 std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
   const Scene& sc = model.scene;
-  if (sc.slew_inertial_loads && (!model.structure || sc.structure_model == "rigid")) {
+  if (sc.slew_inertial_loads && (!model.structure || sc.structure_model == StructureModel::rigid)) {
     throw InputError(
         sc.file +
         ": key 'slewing.inertial_loads': the inertial loads of slewing act "
@@ -27,7 +27,7 @@ std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
   if (!model.structure) return std::make_unique<FixedAnchor>(sc.anchor);
   const TowerCraneStructure& st = *model.structure;
   const double theta = sc.slew_angle;
-  if (sc.structure_model == "rigid") {
+  if (sc.structure_model == StructureModel::rigid) {
     return std::make_unique<RigidTrolleySupport>(st, sc.trolley_radius, theta);
   }
   if (sc.structure_modes >= st.free_dofs) {
@@ -43,7 +43,7 @@ std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
     modes = std::make_shared<const ModalBasis>(lowestModes(st.K, st.M, opt));
   }
   const ModalBasis& b = *modes;
-  if (sc.structure_model == "modal") {
+  if (sc.structure_model == StructureModel::modal) {
     auto modal = std::make_unique<ModalStructureSupport>(st, b, sc.structure_damping_ratio,
                                                          sc.trolley_radius, theta);
     if (sc.slew_inertial_loads) modal->enableSlewingLoads();
@@ -62,7 +62,7 @@ std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
 namespace {
 // The rotating part's inertia for a torque slewing drive (0 otherwise: not needed).
 double torqueDriveInertia(const CraneModel& m) {
-  if (m.scene.slew_drive.model != "torque" || !m.structure) return 0.0;
+  if (m.scene.slew_drive.model != SlewDriveModel::torque || !m.structure) return 0.0;
   return slewingInertia(*m.structure, m.trolleyMass(), m.scene.trolley_radius);
 }
 }  // namespace
@@ -243,9 +243,9 @@ CoupledState SupportedRopeSimulation::sceneInitialState() {
   const Scene& sc = model_.scene;
   const double th = sc.swing_deg * M_PI / 180.0, az = sc.swing_azimuth_deg * M_PI / 180.0;
   CoupledState s;
-  if (sc.initial_mode == "landed") {
+  if (sc.initial_mode == InitialMode::landed) {
     s = landedState();
-  } else if (sc.initial_mode == "stress_free") {
+  } else if (sc.initial_mode == InitialMode::stress_free) {
     s.z = s.zd = Eigen::VectorXd::Zero(support_->size());
     s.q = straightRope(support_->point(s.z), swingDirection(th, az));
     s.v = Eigen::VectorXd::Zero(s.q.size());

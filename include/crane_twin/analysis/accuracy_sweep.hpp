@@ -21,8 +21,8 @@ struct SweepCase {
   int rope_modes = 0;  ///< reduced: kept fixed-top modes
   double delta = 0.0;  ///< reduced: subdomain delta [m]
   int structure_modes = 0;
-  std::string structure_model = "modal";  ///< rigid | modal | full (the fidelity ladder)
-  std::string frame = "-";                ///< reduced: subdomain frame, fixed | corotational
+  StructureModel structure_model = StructureModel::modal;  ///< the fidelity ladder
+  std::string frame = "-";  ///< reduced: subdomain frame, fixed | corotational
 };
 
 struct SweepResult {

@@ -12,6 +12,21 @@
 
 namespace crane_twin {
 
+/// The model choices of a scene file (docs/scenes.md), parsed once when it is read; name()
+/// gives the file's word for each.
+enum class RopeModel { pendulum, full, reduced };
+enum class RopeReduction { invariant, subdomains };  ///< reduced rope: the basis
+enum class StructureModel { rigid, modal, full };
+enum class InitialMode { equilibrium, stress_free, landed };
+enum class IntegratorKind { generalized_alpha, newmark };
+enum class SlewDriveModel { kinematic, torque };
+const char* name(RopeModel m);
+const char* name(RopeReduction r);
+const char* name(StructureModel m);
+const char* name(InitialMode m);
+const char* name(IntegratorKind i);
+const char* name(SlewDriveModel m);
+
 /// One entry of the operator command schedule, held until the next entry.
 struct CommandEntry {
   double t = 0.0;
@@ -21,8 +36,8 @@ struct CommandEntry {
 };
 
 struct RopeSettings {
-  std::string model = "reduced";        ///< pendulum | full | reduced
-  std::string reduction = "invariant";  ///< reduced: invariant | subdomains
+  RopeModel model = RopeModel::reduced;
+  RopeReduction reduction = RopeReduction::invariant;
   int elements = 120;
   double length = 60.0;  ///< hanging length at t = 0 [m]
   int falls = 2;
@@ -48,10 +63,10 @@ struct RopeSettings {
 /// `slewing.drive` (docs/scenes.md): kinematic (the angle follows the ramped rate command) or a
 /// torque-limited drive through a torsional gear (SlewTorqueDrive).
 struct SlewDriveSettings {
-  std::string model = "kinematic";  ///< kinematic | torque
-  double max_torque = 0.0;          ///< torque: gear torque limit [N m]
-  double stiffness = 0.0;           ///< torque: gear stiffness at the ring [N m/rad], 0: rigid
-  double damping = 0.0;             ///< torque: gear damping [N m s/rad]
+  SlewDriveModel model = SlewDriveModel::kinematic;
+  double max_torque = 0.0;  ///< torque: gear torque limit [N m]
+  double stiffness = 0.0;   ///< torque: gear stiffness at the ring [N m/rad], 0: rigid
+  double damping = 0.0;     ///< torque: gear damping [N m s/rad]
 };
 
 /// `ground:` (docs/scenes.md, docs/model.md "Ground contact"): a horizontal landing surface under
@@ -71,9 +86,9 @@ struct Scene {
   double duration = 20.0;
   double time_step = 0.001;
   double output_interval = 0.01;
-  std::string integrator = "generalized_alpha";  ///< generalized_alpha | newmark
+  IntegratorKind integrator = IntegratorKind::generalized_alpha;
   double rho_inf = 0.9;
-  std::string structure_model = "modal";  ///< rigid | modal | full
+  StructureModel structure_model = StructureModel::modal;
   int structure_modes = 100;
   double structure_damping_ratio = 0.01;
   bool structure_geometric_stiffness = false;  ///< P-delta under self-weight (docs/model.md)
@@ -86,7 +101,7 @@ struct Scene {
   double slew_angle = 0.0;
   bool slew_inertial_loads = false;  ///< default: on when the structure is flexible
   SlewDriveSettings slew_drive;
-  std::string initial_mode = "equilibrium";  ///< equilibrium | stress_free | landed
+  InitialMode initial_mode = InitialMode::equilibrium;
   /// `initial.payload_offset` (landed): the payload's horizontal offset from under the rope's
   /// top [m].
   Eigen::Vector2d payload_offset = Eigen::Vector2d::Zero();
