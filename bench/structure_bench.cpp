@@ -1,6 +1,8 @@
 // Cost of building the T8036 structure and of its lowest modes (ARPACK shift-invert + CHOLMOD).
 #include <benchmark/benchmark.h>
 
+#include "crane_twin/io/scene.hpp"
+#include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/structure/modal_analysis.hpp"
 #include "crane_twin/structure/tower_crane_structure.hpp"
 
@@ -29,3 +31,25 @@ static void BM_T8036Modes(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_T8036Modes)->Arg(10)->Arg(100)->ArgName("modes")->Unit(benchmark::kMillisecond);
+
+// What a copy of the T8036 structure costs (its K, M and geometry): what each simulation and
+// forecaster paid when it copied the model with the structure inside, against a copy of the
+// model now (the structure and the modes shared, docs/architecture.md).
+static void BM_T8036StructureCopy(benchmark::State& state) {
+  const TowerCraneStructure s = TowerCraneStructure::build(loadCraneDescription(kCrane));
+  for (auto _ : state) {
+    TowerCraneStructure copy = s;
+    benchmark::DoNotOptimize(copy.K.nonZeros());
+  }
+}
+BENCHMARK(BM_T8036StructureCopy)->Unit(benchmark::kMicrosecond);
+
+static void BM_T8036ModelCopy(benchmark::State& state) {
+  const CraneModel m = buildCraneModel(
+      loadScene(std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_live.yaml", {}));
+  for (auto _ : state) {
+    CraneModel copy = m;
+    benchmark::DoNotOptimize(copy.end_mass);
+  }
+}
+BENCHMARK(BM_T8036ModelCopy)->Unit(benchmark::kMicrosecond);

@@ -13,7 +13,8 @@ namespace crane_twin {
 // the self-weight and the static hanging load (end mass, hanging rope, trolley) at the scene's
 // trolley radius. Refused when the structure buckles under it (K + K_G not positive definite).
 void addGeometricStiffness(CraneModel& m) {
-  TowerCraneStructure& st = *m.structure;
+  auto changed = std::make_shared<TowerCraneStructure>(*m.structure);  // the model's own now
+  TowerCraneStructure& st = *changed;
   const double g = m.scene.gravity;
   const double hanging = m.hangingPointMass() + m.ropeMass() + m.trolleyMass();
   const Eigen::VectorXd f =
@@ -21,6 +22,7 @@ void addGeometricStiffness(CraneModel& m) {
                                             Eigen::Vector3d(0.0, 0.0, -hanging * g));
   m.structure_axial_forces = memberAxialForces(st, staticDisplacement(st, f));
   st.K = st.K + geometricStiffness(st, m.structure_axial_forces);
+  m.structure = changed;
   Eigen::SimplicialLLT<SparseMatrix> llt(st.K);
   if (llt.info() != Eigen::Success) {
     throw InputError(
@@ -94,7 +96,10 @@ CraneModel buildCraneModel(const Scene& scene) {
   CraneModel m;
   m.scene = scene;
   // Even a rigid structure needs the geometry (rail, jib tip, cab reference points).
-  if (scene.crane) m.structure = TowerCraneStructure::build(*scene.crane);
+  if (scene.crane) {
+    m.structure =
+        std::make_shared<const TowerCraneStructure>(TowerCraneStructure::build(*scene.crane));
+  }
   setRopeAndLoad(m);
   if (scene.structure_geometric_stiffness) addGeometricStiffness(m);
   computeStructureModes(m);
@@ -140,8 +145,9 @@ CraneModel withScene(const CraneModel& model, const Scene& scene) {
   m.scene = scene;
   setRopeAndLoad(m);
   if (scene.structure_geometric_stiffness) {
-    TowerCraneStructure& st = *m.structure;
-    st.K = st.K - geometricStiffness(st, model.structure_axial_forces);
+    auto without = std::make_shared<TowerCraneStructure>(*m.structure);
+    without->K = without->K - geometricStiffness(*without, model.structure_axial_forces);
+    m.structure = without;
     addGeometricStiffness(m);
     computeStructureModes(m);  // K changed with the load
     computeHotSpots(m);

@@ -50,7 +50,9 @@ struct HotSpotTable {
 
 struct CraneModel {
   Scene scene;
-  std::optional<TowerCraneStructure> structure;  ///< built unless crane: none
+  /// Built unless crane: none; constant and shared by the model's copies (each simulation and
+  /// forecaster holds a copy of the model: the structure's matrices are not copied with it).
+  std::shared_ptr<const TowerCraneStructure> structure;
   EquivalentRope rope;
   double end_mass = 0.0;  ///< at the chain's end node [kg]: payload + hook block, or the payload
                           ///< alone under a rigging
