@@ -100,11 +100,14 @@ class TwinFollowsPicks(unittest.TestCase):
         at10 = first(twin, lambda r: True, lift + 10.0)
         self.assertIsNotNone(at10, "no twin state 10 s after the lift-off")
         told = twin[0][2]
+        took = first(twin, lambda r: abs(r[2] - told) > 1.0, lift)
+        say("the twin took its estimate %s s after the real lift-off (received)" %
+            ("%.2f" % (took[0] - lift) if took else "never"))
         say("real lift-off at %.2f s, set-down at %.2f s; twin told %.0f kg, "
             "estimate 10 s after the lift-off %.1f kg (received)" % (lift, set_down, told, at10[2]))
         self.assertAlmostEqual(told, 3000.0, delta=1.0)
         self.assertLess(abs(at10[2] - REAL_MASS), 0.03 * REAL_MASS)
-        taken = first(twin, lambda r: abs(r[2] - told) > 1.0, lift)
+        taken = took
         self.assertIsNotNone(taken)
         self.assertTrue(any(t > taken[0] for t in forecasts),
                         "no forecast after the twin took %.0f kg" % taken[2])
