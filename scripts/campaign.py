@@ -130,15 +130,20 @@ def samples(campaign_file, spec):
             for _ in range(count)]
 
 
-def done_ids(results):
-    if not results or not os.path.isfile(results) or os.path.getsize(results) == 0:
-        return set()
+def result_rows(results):
+    """The rows of a results file, refused when its columns are not this script's."""
     with open(results, newline="") as f:
         reader = csv.DictReader(f)
         if reader.fieldnames != COLUMNS:
             raise CampaignError(f"{results}: its columns are not this campaign.py's (an older "
                                 f"file?): start a new results file")
-        return {row["id"] for row in reader if row.get("id")}
+        return list(reader)
+
+
+def done_ids(results):
+    if not results or not os.path.isfile(results) or os.path.getsize(results) == 0:
+        return set()
+    return {row["id"] for row in result_rows(results) if row.get("id")}
 
 
 def run(line):
@@ -189,25 +194,21 @@ def summary(results):
     if not os.path.isfile(results):
         raise CampaignError(f"{results}: no such file")
     rows, failed, runs, lifts, kq_sum, hours, damage = 0, 0, 0, 0, 0.0, 0.0, {}
-    with open(results, newline="") as f:
-        reader = csv.DictReader(f)
-        if reader.fieldnames != COLUMNS:
-            raise CampaignError(f"{results}: its columns are not this campaign.py's")
-        for r in reader:
-            rows += 1
-            if r["exit_status"] != "0":
-                failed += 1
-                continue
-            if not r["lifts"]:
-                continue
-            runs += 1
-            n = int(r["lifts"])
-            lifts += n
-            kq_sum += n * float(r["k_q"])
-            hours += float(r["sim_s"]) / 3600.0
-            for pair in r["damage"].split():
-                name, value = pair.split("=", 1)
-                damage[name] = damage.get(name, 0.0) + float(value)
+    for r in result_rows(results):
+        rows += 1
+        if r["exit_status"] != "0":
+            failed += 1
+            continue
+        if not r["lifts"]:
+            continue
+        runs += 1
+        n = int(r["lifts"])
+        lifts += n
+        kq_sum += n * float(r["k_q"])
+        hours += float(r["sim_s"]) / 3600.0
+        for pair in r["damage"].split():
+            name, value = pair.split("=", 1)
+            damage[name] = damage.get(name, 0.0) + float(value)
     lines = [f"campaign: {rows} rows in {results}, {failed} with a non-zero exit status",
              f"campaign usage: {runs} runs, {hours:.4g} h simulated, {lifts} lifts, "
              f"k_Q {kq_sum / lifts if lifts else 0.0:.4g}"]

@@ -73,9 +73,21 @@ UsageCounter::UsageCounter(const CraneModel& model, const UsageState& before)
   }
   for (const LiftRecord& l : before.recent_lifts) {
     if (!finiteNonNegative(l.mass) || !std::isfinite(l.lift_off)) fail("a lift's figures");
-    lifts_.push_back(l);
-    if (lifts_.size() > kRecentLifts) lifts_.pop_front();
+    remember(l);
   }
+}
+
+void UsageCounter::remember(const LiftRecord& l) {
+  lifts_.push_back(l);
+  if (lifts_.size() > kRecentLifts) lifts_.pop_front();
+}
+
+double UsageCounter::massRatioCubed(double mass) const {
+  return max_load_ > 0.0 ? std::pow(mass / max_load_, 3) : 0.0;
+}
+
+double UsageCounter::massRatioCubedSum() const {
+  return earlier_cubed_sum_ + (last_from_this_count_ ? massRatioCubed(lifts_.back().mass) : 0.0);
 }
 
 void UsageCounter::observe(const SeriesValues& row, const LiftOffMonitor& lift_off,
@@ -86,14 +98,11 @@ void UsageCounter::observe(const SeriesValues& row, const LiftOffMonitor& lift_o
   // A new lift when the monitor confirms one; its factor grows over the monitor's window.
   if (lift_off.liftOffs() < seen_lift_offs_) seen_lift_offs_ = 0;  // a new monitor
   if (lift_off.liftOffs() > seen_lift_offs_) {
-    if (last_from_this_count_ && max_load_ > 0.0) {
-      earlier_cubed_sum_ += std::pow(lifts_.back().mass / max_load_, 3);
-    }
+    earlier_cubed_sum_ = massRatioCubedSum();  // the last lift's mass is final now
     LiftRecord l;
     l.lift_off = lift_off.lastLiftOffTime() + time_offset;
     l.mass = payload_mass_;
-    lifts_.push_back(l);
-    if (lifts_.size() > kRecentLifts) lifts_.pop_front();
+    remember(l);
     ++lift_count_;
     last_from_this_count_ = true;
   }
@@ -128,11 +137,7 @@ UsageReport UsageCounter::report() const {
   r.hours = hours();
   r.lift_count = lift_count_;
   r.lifts.assign(lifts_.begin(), lifts_.end());
-  if (lift_count_ > 0 && max_load_ > 0.0) {
-    double sum = earlier_cubed_sum_;
-    if (last_from_this_count_) sum += std::pow(lifts_.back().mass / max_load_, 3);
-    r.k_q = sum / static_cast<double>(lift_count_);
-  }
+  if (lift_count_ > 0) r.k_q = massRatioCubedSum() / static_cast<double>(lift_count_);
   r.u_class = utilisationClass(static_cast<double>(lift_count_));
   r.q_class = loadSpectrumClass(r.k_q);
   r.design_hours = design_hours_;
@@ -159,10 +164,7 @@ UsageState UsageCounter::state() const {
   s.hours = hours();
   s.lift_count = lift_count_;
   s.max_load = max_load_;
-  s.mass_ratio_cubed_sum = earlier_cubed_sum_;
-  if (last_from_this_count_ && max_load_ > 0.0) {
-    s.mass_ratio_cubed_sum += std::pow(lifts_.back().mass / max_load_, 3);
-  }
+  s.mass_ratio_cubed_sum = massRatioCubedSum();
   s.recent_lifts.assign(lifts_.begin(), lifts_.end());
   for (std::size_t i = 0; i < names_.size(); ++i) {
     s.hot_spots.push_back(

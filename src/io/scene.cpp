@@ -1,75 +1,88 @@
 #include "crane_twin/io/scene.hpp"
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <limits>
 #include <map>
 #include <memory>
 #include <random>
+#include <utility>
 
 #include "crane_twin/io/config_reader.hpp"
 #include "crane_twin/loads/load_geometry.hpp"
 
 namespace crane_twin {
 
-const char* name(RopeModel m) {
-  switch (m) {
-    case RopeModel::pendulum:
-      return "pendulum";
-    case RopeModel::full:
-      return "full";
-    case RopeModel::reduced:
-      return "reduced";
-  }
-  return "?";
-}
-
-const char* name(RopeReduction r) {
-  return r == RopeReduction::subdomains ? "subdomains" : "invariant";
-}
-
-const char* name(StructureModel m) {
-  switch (m) {
-    case StructureModel::rigid:
-      return "rigid";
-    case StructureModel::modal:
-      return "modal";
-    case StructureModel::full:
-      return "full";
-  }
-  return "?";
-}
-
-const char* name(InitialMode m) {
-  switch (m) {
-    case InitialMode::equilibrium:
-      return "equilibrium";
-    case InitialMode::stress_free:
-      return "stress_free";
-    case InitialMode::landed:
-      return "landed";
-  }
-  return "?";
-}
-
-const char* name(IntegratorKind i) {
-  return i == IntegratorKind::newmark ? "newmark" : "generalized_alpha";
-}
-
-const char* name(SlewDriveModel m) { return m == SlewDriveModel::torque ? "torque" : "kinematic"; }
-
 namespace {
 
-// The choice `key` names among `all` (their name()s; default `def`): read once, here.
+// Each model choice's values with the scene file's word for it (docs/scenes.md); the argument
+// only picks the choice.
+template <typename E, std::size_t N>
+using Words = std::array<std::pair<E, const char*>, N>;
+const Words<RopeModel, 3>& words(RopeModel) {
+  static const Words<RopeModel, 3> w{{{RopeModel::pendulum, "pendulum"},
+                                      {RopeModel::full, "full"},
+                                      {RopeModel::reduced, "reduced"}}};
+  return w;
+}
+const Words<RopeReduction, 2>& words(RopeReduction) {
+  static const Words<RopeReduction, 2> w{
+      {{RopeReduction::invariant, "invariant"}, {RopeReduction::subdomains, "subdomains"}}};
+  return w;
+}
+const Words<StructureModel, 3>& words(StructureModel) {
+  static const Words<StructureModel, 3> w{{{StructureModel::rigid, "rigid"},
+                                           {StructureModel::modal, "modal"},
+                                           {StructureModel::full, "full"}}};
+  return w;
+}
+const Words<InitialMode, 3>& words(InitialMode) {
+  static const Words<InitialMode, 3> w{{{InitialMode::equilibrium, "equilibrium"},
+                                        {InitialMode::stress_free, "stress_free"},
+                                        {InitialMode::landed, "landed"}}};
+  return w;
+}
+const Words<IntegratorKind, 2>& words(IntegratorKind) {
+  static const Words<IntegratorKind, 2> w{{{IntegratorKind::generalized_alpha, "generalized_alpha"},
+                                           {IntegratorKind::newmark, "newmark"}}};
+  return w;
+}
+const Words<SlewDriveModel, 2>& words(SlewDriveModel) {
+  static const Words<SlewDriveModel, 2> w{
+      {{SlewDriveModel::kinematic, "kinematic"}, {SlewDriveModel::torque, "torque"}}};
+  return w;
+}
+
 template <typename E>
-E choice(ConfigNode& n, const std::string& key, E def, std::initializer_list<E> all) {
-  std::vector<std::string> words;
-  for (E e : all) words.push_back(name(e));
-  const std::string word = n.string(key, std::string(name(def)), words);
-  for (E e : all)
-    if (word == name(e)) return e;
+const char* wordOf(E e) {
+  for (const auto& [value, word] : words(e))
+    if (value == e) return word;
+  return "?";  // not reached: every value has its word
+}
+
+// The choice `key` names (default `def`), read once, here: a word not in words() is refused
+// with the words allowed.
+template <typename E>
+E choice(ConfigNode& n, const std::string& key, E def) {
+  std::vector<std::string> allowed;
+  for (const auto& entry : words(def)) allowed.push_back(entry.second);
+  const std::string word = n.string(key, std::string(wordOf(def)), allowed);
+  for (const auto& [value, w] : words(def))
+    if (word == w) return value;
   return def;  // not reached: string() refuses any other word
 }
+
+}  // namespace
+
+const char* name(RopeModel m) { return wordOf(m); }
+const char* name(RopeReduction r) { return wordOf(r); }
+const char* name(StructureModel m) { return wordOf(m); }
+const char* name(InitialMode m) { return wordOf(m); }
+const char* name(IntegratorKind i) { return wordOf(i); }
+const char* name(SlewDriveModel m) { return wordOf(m); }
+
+namespace {
 
 // A key whose value must lie within a crane's limits [lo, hi] (what names the limits).
 void checkWithin(ConfigNode& n, const std::string& key, double value, double lo, double hi,
@@ -126,16 +139,13 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   }
   {
     ConfigNode n = root.map("integrator");
-    s.integrator = choice(n, "method", IntegratorKind::generalized_alpha,
-                          {IntegratorKind::generalized_alpha, IntegratorKind::newmark});
+    s.integrator = choice(n, "method", IntegratorKind::generalized_alpha);
     s.rho_inf = n.number("rho_inf", 0.9, Bounds::closed(0.0, 1.0));
     n.finish();
   }
   {
     ConfigNode n = root.map("structure");
-    s.structure_model =
-        choice(n, "model", s.crane ? StructureModel::modal : StructureModel::rigid,
-               {StructureModel::rigid, StructureModel::modal, StructureModel::full});
+    s.structure_model = choice(n, "model", s.crane ? StructureModel::modal : StructureModel::rigid);
     s.structure_modes = n.integer("modes", 100, 1, 100000);
     s.structure_damping_ratio = n.number("damping_ratio", 0.01, Bounds::closed(0.0, 1.0));
     s.structure_geometric_stiffness = n.boolean("geometric_stiffness", false);
@@ -152,10 +162,8 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     ConfigNode n = root.map("rope", true);
     RopeSettings& r = s.rope;
     const RopeSpec def = s.crane ? s.crane->rope : RopeSpec{};
-    r.model = choice(n, "model", RopeModel::reduced,
-                     {RopeModel::pendulum, RopeModel::full, RopeModel::reduced});
-    r.reduction = choice(n, "reduction", RopeReduction::invariant,
-                         {RopeReduction::invariant, RopeReduction::subdomains});
+    r.model = choice(n, "model", RopeModel::reduced);
+    r.reduction = choice(n, "reduction", RopeReduction::invariant);
     r.elements = n.integer("elements", 120, 1, 100000);
     r.length = n.number("length", std::nullopt, Bounds::positive());
     r.falls = n.integer("falls", def.falls, 1, 12);
@@ -235,8 +243,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     if (n.has("drive")) {
       ConfigNode d = n.map("drive");
       SlewDriveSettings& dr = s.slew_drive;
-      dr.model = choice(d, "model", SlewDriveModel::kinematic,
-                        {SlewDriveModel::kinematic, SlewDriveModel::torque});
+      dr.model = choice(d, "model", SlewDriveModel::kinematic);
       if (dr.model == SlewDriveModel::torque) {
         if (!s.crane) d.fail("model", "a slewing drive needs a crane (crane: none has none)");
         dr.max_torque = d.number("max_torque", std::nullopt, Bounds::positive());
@@ -259,9 +266,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   }
   {
     ConfigNode n = root.map("initial");
-    s.initial_mode =
-        choice(n, "mode", InitialMode::equilibrium,
-               {InitialMode::equilibrium, InitialMode::stress_free, InitialMode::landed});
+    s.initial_mode = choice(n, "mode", InitialMode::equilibrium);
     s.swing_deg = n.number("swing_deg", 0.0, Bounds::closed(0.0, 180.0));
     s.swing_azimuth_deg = n.number("swing_azimuth_deg", 0.0, Bounds::any());
     s.payload_velocity = n.vec3("payload_velocity", Eigen::Vector3d::Zero());

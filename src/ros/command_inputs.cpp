@@ -24,11 +24,12 @@ CommandEntry entryOf(const CraneCommand& m) {
 }  // namespace
 
 CommandInputs::CommandInputs(ros::NodeHandle nh, const NodeSettings& settings,
-                             const CraneModel& model, double base_yaw)
+                             const CraneModel& model, double base_yaw, const std::string& failure)
     : measured_input_(settings.twin.measured_input),
       command_bag_(settings.command_bag),
       command_timeout_(settings.command_timeout),
       base_yaw_(base_yaw),
+      failure_(failure),
       watchdog_(settings.command_timeout) {
   loadReplay(model);
   applied_pub_ = nh.advertise<CraneCommand>("crane/command_applied", 50, true);
@@ -72,7 +73,6 @@ void CommandInputs::attach(Simulation& sim, const CraneModel& model, double t_of
   model_ = &model;
   t_offset_ = t_offset;
   if (start == Start::kContinued) return;
-  failure_.clear();
   if (measured_wind_) sim.setMeasuredWind(*measured_wind_);
   if (start == Start::kFromStart) replay_.assign(replay_all_.begin(), replay_all_.end());
   follower_.cancel();

@@ -30,9 +30,11 @@ class CommandInputs {
  public:
   /// Subscribes and advertises in `nh`'s namespace; reads ~command_bag. Throws InputError for a
   /// bag without commands or with a command the scene refuses. `base_yaw` [rad]: the crane's
-  /// frame turned about z on the site (the wind comes in the world's frame).
+  /// frame turned about z on the site (the wind comes in the world's frame). `failure`: the
+  /// node's reason the simulation stopped ("" while it runs), read as commands come (it must
+  /// outlive this object): while it is set commands and trajectories are refused.
   CommandInputs(ros::NodeHandle nh, const NodeSettings& settings, const CraneModel& model,
-                double base_yaw);
+                double base_yaw, const std::string& failure);
   enum class Start {
     kContinued,  ///< the same run continued by another simulation (the twin's new load)
     kRestarted,  ///< a new simulation where the crane stands (~set_payload): any trajectory
@@ -42,8 +44,6 @@ class CommandInputs {
   /// The simulation the inputs drive from now on, its model, and the simulated time before it
   /// started [s].
   void attach(Simulation& sim, const CraneModel& model, double t_offset, Start start);
-  /// The simulation stopped (`why`); commands are refused until the next attach.
-  void stopped(const std::string& why) { failure_ = why; }
   /// Before each step: the replayed commands now due, the trajectory's rates, a timeout's stop.
   void beforeStep();
   /// What a forecast assumes the drives are asked from now on (the trajectory being followed,
@@ -74,7 +74,7 @@ class CommandInputs {
   Simulation* sim_ = nullptr;
   const CraneModel* model_ = nullptr;
   double t_offset_ = 0.0;
-  std::string failure_;  ///< non-empty: the simulation stopped
+  const std::string& failure_;  ///< the node's: non-empty while the simulation is stopped
   CommandWatchdog watchdog_;
   TrajectoryFollower follower_;
   std::deque<Replayed> replay_;  ///< commands still to apply, by simulated time

@@ -42,7 +42,7 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
     throw InputError("parameters '~input' 'measured' and '~command_bag' exclude each other");
   }
   twin_ = std::make_unique<TwinAdapter>(nh_, settings_.twin, frames_, base, yaw);
-  inputs_ = std::make_unique<CommandInputs>(nh_, settings_, model_, yaw);
+  inputs_ = std::make_unique<CommandInputs>(nh_, settings_, model_, yaw, failure_);
   usage_ = std::make_unique<UsageLink>(nh_, settings_.usage, model_);
   resetSimulation();
   recorder_ =
@@ -203,7 +203,6 @@ bool CraneSimNode::stepOnce() {
     std::ostringstream s;
     s << "t = " << sim_->time() << " s: " << e.what();
     failure_ = s.str();
-    inputs_->stopped(failure_);
     ROS_ERROR("crane_sim_node: simulation stopped at %s; call ~reset to start again",
               failure_.c_str());
     return false;

@@ -3,6 +3,7 @@
 #include <Eigen/SparseCholesky>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "crane_twin/io/input_error.hpp"
 #include "crane_twin/structure/geometric_stiffness.hpp"
@@ -12,9 +13,8 @@ namespace crane_twin {
 // P-delta (docs/model.md "Geometric stiffness"): K + K_G(N), N the members' axial forces under
 // the self-weight and the static hanging load (end mass, hanging rope, trolley) at the scene's
 // trolley radius. Refused when the structure buckles under it (K + K_G not positive definite).
-void addGeometricStiffness(CraneModel& m) {
-  auto changed = std::make_shared<TowerCraneStructure>(*m.structure);  // the model's own now
-  TowerCraneStructure& st = *changed;
+// `st`: the model's structure without any K_G, its own copy, which becomes the model's.
+void addGeometricStiffness(CraneModel& m, TowerCraneStructure st) {
   const double g = m.scene.gravity;
   const double hanging = m.hangingPointMass() + m.ropeMass() + m.trolleyMass();
   const Eigen::VectorXd f =
@@ -22,8 +22,8 @@ void addGeometricStiffness(CraneModel& m) {
                                             Eigen::Vector3d(0.0, 0.0, -hanging * g));
   m.structure_axial_forces = memberAxialForces(st, staticDisplacement(st, f));
   st.K = st.K + geometricStiffness(st, m.structure_axial_forces);
-  m.structure = changed;
   Eigen::SimplicialLLT<SparseMatrix> llt(st.K);
+  m.structure = std::make_shared<const TowerCraneStructure>(std::move(st));
   if (llt.info() != Eigen::Success) {
     throw InputError(
         m.scene.file +
@@ -101,7 +101,7 @@ CraneModel buildCraneModel(const Scene& scene) {
         std::make_shared<const TowerCraneStructure>(TowerCraneStructure::build(*scene.crane));
   }
   setRopeAndLoad(m);
-  if (scene.structure_geometric_stiffness) addGeometricStiffness(m);
+  if (scene.structure_geometric_stiffness) addGeometricStiffness(m, *m.structure);
   computeStructureModes(m);
   computeHotSpots(m);
   return m;
@@ -145,10 +145,9 @@ CraneModel withScene(const CraneModel& model, const Scene& scene) {
   m.scene = scene;
   setRopeAndLoad(m);
   if (scene.structure_geometric_stiffness) {
-    auto without = std::make_shared<TowerCraneStructure>(*m.structure);
-    without->K = without->K - geometricStiffness(*without, model.structure_axial_forces);
-    m.structure = without;
-    addGeometricStiffness(m);
+    TowerCraneStructure without = *m.structure;
+    without.K = without.K - geometricStiffness(without, model.structure_axial_forces);
+    addGeometricStiffness(m, std::move(without));
     computeStructureModes(m);  // K changed with the load
     computeHotSpots(m);
   }

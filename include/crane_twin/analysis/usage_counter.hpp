@@ -93,6 +93,11 @@ class UsageCounter {
 
  private:
   double hours() const;
+  /// (m / m_max)^3 (0 without a max_load), and its sum over every lift counted.
+  double massRatioCubed(double mass) const;
+  double massRatioCubedSum() const;
+  /// Keep `l` among the latest kRecentLifts.
+  void remember(const LiftRecord& l);
   double payload_mass_ = 0.0, max_load_ = 0.0, design_hours_ = 0.0;
   std::vector<std::string> names_;
   std::vector<SnCurve> curves_;
