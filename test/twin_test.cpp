@@ -13,6 +13,7 @@
 #include "crane_twin/io/input_error.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
 #include "crane_twin/simulation/invariant_reduced_simulation.hpp"
+#include "crane_twin/simulation/simulation_capabilities.hpp"
 #include "crane_twin/twin/payload_forecast.hpp"
 #include "crane_twin/twin/sway_correction.hpp"
 #include "crane_twin/twin/sway_estimator.hpp"
@@ -46,7 +47,7 @@ TEST(ContinueFrom, ACopyWithTheSameStepRunsIdentically) {
     b->initialize();
     a->setCommand(moving());
     for (int k = 0; k < 400; ++k) a->step();
-    b->continueFrom(*a);
+    requireCapability<ContinuableRun>(*b).continueFrom(*a);
     EXPECT_EQ(b->time(), a->time());
     for (int k = 0; k < 600; ++k) {
       a->step();
@@ -61,8 +62,39 @@ TEST(ContinueFrom, ACopyWithTheSameStepRunsIdentically) {
   std::unique_ptr<Simulation> f = makeSimulation(live({"rope.model=full"}));
   p->initialize();
   f->initialize();
-  EXPECT_THROW(p->continueFrom(*f), InputError);
-  EXPECT_THROW(f->continueFrom(*p), InputError);
+  EXPECT_THROW(requireCapability<ContinuableRun>(*p).continueFrom(*f), InputError);
+  EXPECT_THROW(requireCapability<ContinuableRun>(*f).continueFrom(*p), InputError);
+}
+
+TEST(SimulationCapabilities, EachRopeModelHasThoseItsTableNames) {
+  // simulation_capabilities.hpp's table: continue, correct the motion, take a measured wind.
+  struct Row {
+    std::vector<std::string> sets;
+    bool continues, corrects, takes_wind;
+  };
+  const std::vector<Row> rows = {
+      {{"rope.model=full"}, true, true, true},
+      {{"rope.model=reduced"}, true, true, true},
+      {{"rope.model=reduced", "rope.reduction=subdomains"}, false, false, false},
+      {{"rope.model=pendulum"}, true, false, true},
+  };
+  for (const Row& r : rows) {
+    std::unique_ptr<Simulation> sim = makeSimulation(live(r.sets));
+    const std::string what = r.sets.back();
+    EXPECT_EQ(capabilityOf<ContinuableRun>(*sim) != nullptr, r.continues) << what;
+    EXPECT_EQ(capabilityOf<CorrectableMotion>(*sim) != nullptr, r.corrects) << what;
+    EXPECT_EQ(capabilityOf<MeasuredWindInput>(*sim) != nullptr, r.takes_wind) << what;
+    if (!r.continues) {
+      // Asked for where it is missing: the message names the models that have it.
+      try {
+        requireCapability<ContinuableRun>(*sim);
+        ADD_FAILURE() << what << ": no InputError";
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("pendulum"), std::string::npos) << e.what();
+      }
+      EXPECT_THROW(PayloadForecaster(live(r.sets), 0.0), InputError) << what;
+    }
+  }
 }
 
 TEST(PayloadForecast, ThePendulumForecastsItsOwnFuture) {

@@ -200,8 +200,9 @@ TEST(Wind, ThreeSecondMeanAtTheJibAndItsWarning) {
 TEST(Wind, MeasuredWindReplacesTheScenesAndBadInputIsRefused) {
   std::unique_ptr<Simulation> sim = makeSimulation(buildCraneModel(loadScene(payloadWindScene())));
   sim->initialize();
-  EXPECT_THROW(sim->setMeasuredWind(Eigen::Vector3d(std::nan(""), 0, 0)), std::invalid_argument);
-  sim->setMeasuredWind(Eigen::Vector3d(0.0, 0.0, 0.0));  // calm: the payload swings back
+  MeasuredWindInput& wind = requireCapability<MeasuredWindInput>(*sim);
+  EXPECT_THROW(wind.setMeasuredWind(Eigen::Vector3d(std::nan(""), 0, 0)), std::invalid_argument);
+  wind.setMeasuredWind(Eigen::Vector3d(0.0, 0.0, 0.0));  // calm: the payload swings back
   for (int k = 0; k < 200; ++k) sim->step();
   EXPECT_LT(sim->series().payload_velocity.norm(), 5.0);
   const std::string p = payloadWindScene();

@@ -8,6 +8,7 @@
 #include <algorithm>
 
 #include "crane_twin/io/input_error.hpp"
+#include "crane_twin/simulation/simulation_capabilities.hpp"
 #include "ros_messages.hpp"
 
 namespace crane_twin {
@@ -73,7 +74,15 @@ void CommandInputs::attach(Simulation& sim, const CraneModel& model, double t_of
   model_ = &model;
   t_offset_ = t_offset;
   if (start == Start::kContinued) return;
-  if (measured_wind_) sim.setMeasuredWind(*measured_wind_);
+  if (measured_wind_) {
+    // The anemometer's last wind carries over into a rebuilt run that takes wind.
+    if (MeasuredWindInput* input = capabilityOf<MeasuredWindInput>(sim)) {
+      input->setMeasuredWind(*measured_wind_);
+    } else {
+      warnThrottled(std::string("crane/wind dropped: ") + MeasuredWindInput::kWhat);
+      measured_wind_.reset();
+    }
+  }
   if (start == Start::kFromStart) replay_.assign(replay_all_.begin(), replay_all_.end());
   follower_.cancel();
   watchdog_ = CommandWatchdog(command_timeout_);
@@ -146,13 +155,14 @@ void CommandInputs::onWind(const geometry_msgs::Vector3Stamped::ConstPtr& msg) {
     return;
   }
   const Eigen::Vector3d v = Eigen::AngleAxisd(-base_yaw_, Eigen::Vector3d::UnitZ()) * w;
-  try {
-    sim_->setMeasuredWind(v);
-    measured_wind_ = v;
-  } catch (const std::exception& e) {  // InputError: this rope model takes no wind
+  MeasuredWindInput* input = capabilityOf<MeasuredWindInput>(*sim_);
+  if (!input) {
     ++rejected_;
-    warnThrottled(std::string("crane/wind rejected: ") + e.what());
+    warnThrottled(std::string("crane/wind rejected: ") + MeasuredWindInput::kWhat);
+    return;
   }
+  input->setMeasuredWind(v);  // finite: checked above
+  measured_wind_ = v;
 }
 
 void CommandInputs::onTrajectory(const trajectory_msgs::JointTrajectory::ConstPtr& msg) {

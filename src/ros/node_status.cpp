@@ -26,10 +26,12 @@ diagnostic_msgs::DiagnosticStatus simulationStatus(const NodeRunRecord& r) {
   addNumber(d, "requested_real_time_factor", r.requested_real_time_factor);
   addNumber(d, "step_cost_s", r.step_cost);
   addNumber(d, "steps", static_cast<double>(r.steps));
-  addNumber(d, "subdomains", r.statistics.subdomains);
+  if (r.statistics.subdomains > 0) {  // the subdomain reduction's count, shown where it runs
+    addNumber(d, "subdomains", r.statistics.subdomains);
+    addNumber(d, "mode_updates_s", r.statistics.mode_update_seconds);
+  }
   addNumber(d, "hand_overs", static_cast<double>(r.statistics.hand_overs));
   addNumber(d, "full_order_steps", static_cast<double>(r.statistics.full_order_steps));
-  addNumber(d, "mode_updates_s", r.statistics.mode_update_seconds);
   addNumber(d, "rejected_commands", static_cast<double>(r.rejected_commands));
   addNumber(d, "pacing_overruns", static_cast<double>(r.pacing_overruns));
   addNumber(d, "warnings_seen", r.warnings_seen);

@@ -6,6 +6,7 @@
 #include "crane_twin/simulation/crane_simulation.hpp"
 #include "crane_twin/simulation/invariant_reduced_simulation.hpp"
 #include "crane_twin/simulation/pendulum_crane_simulation.hpp"
+#include "crane_twin/simulation/simulation_capabilities.hpp"
 #include "crane_twin/simulation/subdomain_reduced_simulation.hpp"
 
 namespace crane_twin {
@@ -63,22 +64,6 @@ void writeSeriesRow(std::ostream& out, const SeriesValues& v) {
       << v.full_order_steps << ',' << (v.payload_landed ? 1 : 0) << ',' << v.contact_force;
   for (double sigma : v.stresses) out << ',' << sigma;
   out << '\n';
-}
-
-void Simulation::setMeasuredWind(const Eigen::Vector3d&) {
-  throw InputError("this rope model takes no wind (rope.reduction: subdomains)");
-}
-
-void Simulation::continueFrom(const Simulation&) {
-  throw InputError(
-      "continuing from another run's state (forecasts) needs rope.model full, pendulum or "
-      "reduced (rope.reduction: invariant)");
-}
-
-void Simulation::setMotion(const CoupledState&) {
-  throw InputError(
-      "setting the rope's motion (the twin's sway correction) needs rope.model "
-      "full or reduced (rope.reduction: invariant)");
 }
 
 void Simulation::checkMotionSizes(const CoupledState& m, const CoupledState& like) {
@@ -147,7 +132,7 @@ std::unique_ptr<Simulation> makeSimulation(const CraneModel& model) {
 std::unique_ptr<Simulation> continueWithModel(const CraneModel& model, const Simulation& from) {
   std::unique_ptr<Simulation> sim = makeSimulation(model);
   sim->initialize();
-  sim->continueFrom(from);
+  requireCapability<ContinuableRun>(*sim).continueFrom(from);
   return sim;
 }
 

@@ -6,6 +6,7 @@
 
 #include "crane_twin/integrators/numerical_failure.hpp"
 #include "crane_twin/io/input_error.hpp"
+#include "crane_twin/simulation/simulation_capabilities.hpp"
 
 namespace crane_twin {
 
@@ -21,8 +22,8 @@ PayloadForecaster::PayloadForecaster(const CraneModel& model, double time_step) 
   }
   time_step_ = m.scene.time_step;
   sim_ = makeSimulation(m);
+  continuable_ = &requireCapability<ContinuableRun>(*sim_);  // InputError, at once
   sim_->initialize();
-  sim_->continueFrom(*sim_);  // refuses models that cannot continue (InputError), at once
 }
 
 PayloadForecast PayloadForecaster::run(const Simulation& twin, const CommandEntry& command,
@@ -37,7 +38,7 @@ PayloadForecast PayloadForecaster::run(const Simulation& twin, const CommandSour
   return runPrepared(source, horizon, sample_period);
 }
 
-void PayloadForecaster::prepare(const Simulation& twin) { sim_->continueFrom(twin); }
+void PayloadForecaster::prepare(const Simulation& twin) { continuable_->continueFrom(twin); }
 
 PayloadForecast PayloadForecaster::runPrepared(const CommandSource& source, double horizon,
                                                double sample_period) {

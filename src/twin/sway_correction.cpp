@@ -6,6 +6,7 @@
 
 #include "crane_twin/integrators/coupled_state.hpp"
 #include "crane_twin/rope/rope_support.hpp"
+#include "crane_twin/simulation/simulation_capabilities.hpp"
 #include "crane_twin/structure/structure_support.hpp"
 
 namespace crane_twin {
@@ -78,7 +79,7 @@ void applyTwinCorrection(Simulation& sim, const SwayUpdate& u, const std::vector
   rotateRopeAboutTop(
       f.q, f.v, Eigen::Vector3d(u.position_correction.x(), u.position_correction.y(), 0.0),
       Eigen::Vector3d(u.velocity_correction.x(), u.velocity_correction.y(), 0.0), blocks);
-  sim.setMotion(f);
+  requireCapability<CorrectableMotion>(sim).setMotion(f);
 }
 
 namespace {

@@ -20,7 +20,9 @@ namespace crane_twin {
 /// end mass, gravity and the trolley mass on the top node (docs/model.md).
 AncfRope sceneRope(const CraneModel& model);
 
-class CraneSimulation final : public SupportedRopeSimulation {
+class CraneSimulation final : public SupportedRopeSimulation,
+                              public ContinuableRun,
+                              public CorrectableMotion {
  public:
   /// Builds the rope and its support. Integrates at full order whatever rope.model says (the
   /// reduced model starts from this model's equilibrium and linearises it). Throws InputError

@@ -122,9 +122,9 @@ class HandOverSimulation : public Simulation {
   virtual bool carriesGround() const { return false; }
   /// Checked after every reduced step: the basis no longer carries the state (default: never).
   virtual bool errorTooLarge(long /*steps*/) { return false; }
-  /// Subdomains of the run (the subdomain reduction's own count; default 1: one basis) and the
-  /// wall time in its mode updates [s].
-  virtual int reducedSubdomains() const { return 1; }
+  /// Subdomains of the run (the subdomain reduction's own count; 0 for every other reduced
+  /// rope: the count is that reduction's output alone) and the wall time in its mode updates [s].
+  virtual int reducedSubdomains() const { return 0; }
   virtual double reducedModeUpdateSeconds() const { return 0.0; }
 
   /// Hand the state `full` over to full order, for cause c.

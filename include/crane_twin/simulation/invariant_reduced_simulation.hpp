@@ -35,6 +35,7 @@
 
 #include "crane_twin/rope/invariant_rope_basis.hpp"
 #include "crane_twin/simulation/hand_over_simulation.hpp"
+#include "crane_twin/simulation/simulation_capabilities.hpp"
 #include "crane_twin/solvers/invariant_reduced_solver.hpp"
 
 namespace crane_twin {
@@ -45,7 +46,10 @@ InvariantBasisSettings invariantBasisSettings(const Scene& scene);
 /// Reduced coordinates (3 per shape) the scene's invariant basis has (builds the basis alone).
 int invariantRopeCoordinates(const CraneModel& model);
 
-class InvariantReducedSimulation final : public HandOverSimulation {
+class InvariantReducedSimulation final : public HandOverSimulation,
+                                         public ContinuableRun,
+                                         public CorrectableMotion,
+                                         public MeasuredWindInput {
  public:
   /// Throws InputError for what the full-order model refuses, naming the key.
   explicit InvariantReducedSimulation(const CraneModel& model);

@@ -12,7 +12,7 @@
 
 namespace crane_twin {
 
-class PendulumCraneSimulation final : public SupportedRopeSimulation {
+class PendulumCraneSimulation final : public SupportedRopeSimulation, public ContinuableRun {
  public:
   /// Throws InputError for an inconsistent scene (makeRopeSupport), naming the key.
   explicit PendulumCraneSimulation(const CraneModel& model);

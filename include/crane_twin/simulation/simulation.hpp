@@ -64,8 +64,8 @@ void writeSeriesRow(std::ostream& out, const SeriesValues& v);
 
 /// What a run counts (docs/cli.md, the summary line); zero where a model has no such thing.
 struct RunStatistics {
-  /// The subdomain reduction: subdomains started and wall time in rope mode updates [s]; the
-  /// invariant reduced rope: 1 subdomain (one basis).
+  /// The subdomain reduction (rope.reduction: subdomains) alone: subdomains started and wall
+  /// time in rope mode updates [s]; 0 for every other model.
   int subdomains = 0;
   double mode_update_seconds = 0.0;
   long halved_steps = 0;  ///< steps taken as halves because Newton failed at the full step
@@ -101,10 +101,6 @@ class Simulation {
   /// docs/model.md "Drives"). Throws std::invalid_argument for a non-finite value and InputError
   /// for what is not built; the state is unchanged then.
   virtual void setCommand(const CommandEntry& command) = 0;
-  /// A measured wind at the jib's height [m/s, crane frame; its horizontal part] from now on,
-  /// replacing the scene's wind (docs/model.md "Wind"; the node's crane/wind). Throws
-  /// std::invalid_argument for a non-finite value and InputError where the model takes no wind.
-  virtual void setMeasuredWind(const Eigen::Vector3d& velocity);
   /// The state in the rope model's own full coordinates (ANCF q, or the pendulum's two points;
   /// the reduced model expands its own: O(n r)) and the support's coordinates z.
   virtual CoupledState fullState() const = 0;
@@ -122,20 +118,9 @@ class Simulation {
   /// What the run has counted so far (the summary line, the node's diagnostics).
   virtual RunStatistics statistics() const = 0;
 
-  /// Continue from the state of another simulation of the same scene and rope model (its rope,
-  /// support, drives and time), e.g. a forecast copy built with another time step: with the
-  /// same step the two then run identically. Throws InputError for another model type or a
-  /// model that does not support it (docs/twin.md).
-  virtual void continueFrom(const Simulation& other);
-  /// Replace the positions and velocities of the rope and the support by s.q, s.v, s.z, s.zd
-  /// (full coordinates, as fullState() gives them; the rope's top node must stay on the
-  /// support's point), keeping the drives and the time; accelerations are made consistent
-  /// again. The twin's correction (docs/twin.md). Throws InputError where the model does not
-  /// support it, std::invalid_argument for wrong sizes.
-  virtual void setMotion(const CoupledState& s);
-
  protected:
-  /// setMotion's size check: std::invalid_argument unless m's q, v, z, zd have the sizes of the
+  /// CorrectableMotion::setMotion's size check (simulation_capabilities.hpp):
+  /// std::invalid_argument unless m's q, v, z, zd have the sizes of the
   /// model's full state `like`.
   static void checkMotionSizes(const CoupledState& m, const CoupledState& like);
 
@@ -159,7 +144,7 @@ int integratedRopeCoordinates(const CraneModel& model);
 /// rope.reduction: subdomains, PendulumCraneSimulation for pendulum). Throws InputError.
 std::unique_ptr<Simulation> makeSimulation(const CraneModel& model);
 
-/// A simulation of `model` that continues `from` (Simulation::continueFrom): its state, drives
+/// A simulation of `model` that continues `from` (ContinuableRun::continueFrom): its state, drives
 /// and time, now with model's loads. For a load that changes in a running twin
 /// (withPayloadMass; docs/twin.md "Picks and set-downs"): the rope, stretched for the old load,
 /// takes the new one from this step on. Throws InputError where `from`'s model cannot continue

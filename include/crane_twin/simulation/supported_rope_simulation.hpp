@@ -16,10 +16,11 @@
 #include "crane_twin/rope/rope_support.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/simulation/simulation.hpp"
+#include "crane_twin/simulation/simulation_capabilities.hpp"
 
 namespace crane_twin {
 
-class SupportedRopeSimulation : public Simulation {
+class SupportedRopeSimulation : public Simulation, public MeasuredWindInput {
  public:
   double time() const override { return state_.t; }
   SeriesValues series() const override { return seriesOf(state_); }

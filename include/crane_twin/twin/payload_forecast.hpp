@@ -14,6 +14,7 @@
 #include "crane_twin/io/scene.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/simulation/simulation.hpp"
+#include "crane_twin/simulation/simulation_capabilities.hpp"
 
 namespace crane_twin {
 
@@ -49,6 +50,7 @@ class PayloadForecaster {
 
  private:
   std::unique_ptr<Simulation> sim_;
+  ContinuableRun* continuable_ = nullptr;  ///< sim_'s, checked at construction
   double time_step_ = 0.0;
 };
 
