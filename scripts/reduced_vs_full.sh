@@ -33,7 +33,7 @@ one() {
   }
   local wf wr wp ho
   wf=$(wall full); wr=$(wall reduced); wp=$(wall pendulum)
-  ho=$(sed -n 's/.*hand_overs=\([^ ]*\) full_order_steps=\(.*\)/\1 | \2/p' "$OUT/${name}_reduced.log")
+  ho=$(sed -n 's/.*hand_overs=\([^ ]*\) full_order_steps=\([^ ]*\).*/\1 | \2/p' "$OUT/${name}_reduced.log")
   printf '%05d| %s | %s | %s | %s | %s | %s | %s%s | %s\n' "$index" "$name" "$dur" "$wf" "$wr" \
     "$(awk -v a="$wf" -v b="$wr" 'BEGIN{if (b > 0) printf "%.1f", a / b}')" "$ho" "$(errs reduced)" \
     "$wp" "$(errs pendulum)"
