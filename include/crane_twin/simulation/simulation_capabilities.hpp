@@ -1,5 +1,5 @@
-// What some rope models can do beyond the Simulation core (docs/architecture.md, "The concepts,
-// one file each": what some runs can do besides). A model that can derives from the capability's interface; a caller
+// What some rope models can do beyond the Simulation core (docs/architecture.md, "The
+// concepts, one file each"). A model that can derives from the capability's interface; a caller
 // asks for it by type (capabilityOf<C>(sim): nullptr where the model has none) or requires it
 // (requireCapability<C>(sim): InputError naming the models that have it), at the boundary,
 // instead of calling and catching a "not supported" throw.
