@@ -9,6 +9,7 @@
 #include <cmath>
 #include <fstream>
 #include <memory>
+#include <random>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -326,6 +327,45 @@ TEST(GroundLanding, LiftOffMonitorCountsLiftsNotBounces) {
   EXPECT_THROW(LiftOffMonitor(0.2), std::invalid_argument);
 }
 
+// A lifted load that touches the ground again for a moment while the hoist reels in (the jib's
+// bounce under a load that had only just left the ground) is still the same lift: no set-down,
+// no second lift. Lying kConfirmation, it is set down, dated at its landing; a new reel-in then
+// lifts anew.
+TEST(GroundLanding, LiftOffMonitorTakesATouchForPartOfTheLift) {
+  LiftOffMonitor mon(3.0);
+  auto row = [&](double t, bool landed, double length) {
+    SeriesValues v;
+    v.t = t;
+    v.payload_landed = landed;
+    v.rope_top_tension = 1000.0;
+    v.rope_length = length;
+    mon.observe(v, 1000.0);
+  };
+  auto reeled = [](double t) { return 60.0 - 0.1 * std::max(0.0, t - 1.0); };
+  for (int k = 0; k < 200; ++k) row(0.01 * k, true, reeled(0.01 * k));  // landed to 2 s
+  for (int k = 200; k < 300; ++k) row(0.01 * k, false, reeled(0.01 * k));
+  EXPECT_EQ(mon.liftOffs(), 1);
+  EXPECT_TRUE(mon.liftInProgress());
+  for (int k = 300; k < 302; ++k) row(0.01 * k, true, reeled(0.01 * k));  // a 20 ms touch
+  for (int k = 302; k < 600; ++k) row(0.01 * k, false, reeled(0.01 * k));
+  EXPECT_EQ(mon.liftOffs(), 1);
+  EXPECT_EQ(mon.setDowns(), 0);
+  EXPECT_TRUE(mon.liftInProgress());
+  // Lowered onto the ground at 6 s on 59.6 m of rope: set down 0.5 s later, dated 6 s.
+  for (int k = 600; k < 649; ++k) row(0.01 * k, true, 59.6);
+  EXPECT_EQ(mon.setDowns(), 0);
+  row(6.49, true, 59.6);
+  row(6.5, true, 59.6);
+  EXPECT_EQ(mon.setDowns(), 1);
+  EXPECT_FALSE(mon.liftInProgress());
+  EXPECT_DOUBLE_EQ(mon.landingTime(), 6.0);
+  // Reeled in again: a new lift once off the ground for 0.5 s.
+  for (int k = 651; k < 750; ++k) row(0.01 * k, true, 59.6 - 0.1 * (0.01 * k - 6.5));
+  for (int k = 750; k < 802; ++k) row(0.01 * k, false, 59.6 - 0.1 * (0.01 * k - 6.5));
+  EXPECT_EQ(mon.liftOffs(), 2);
+  EXPECT_NEAR(mon.lastLiftOffTime(), 7.5, 1e-9);
+}
+
 TEST(GroundLanding, BadKeysAreRefusedWithTheKeyNamed) {
   const std::string crane = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/cranes/t8036.yaml";
   const std::string base = "crane: " + crane + R"(
@@ -362,6 +402,12 @@ trolley: {radius: 30}
   refused({"ground.height=0", "rope.model=reduced", "rope.reduction=subdomains"}, "ground");
   refused({"ground.height=0", "rope.tension_only=false", "rope.length=66", "initial.mode=landed"},
           "initial.mode");
+  // A hanging or released start whose load would begin inside the ground (60 m of rope from a
+  // top about 68 m up, the ground 10 m up): the key named, in every rope model.
+  for (const char* model : {"rope.model=full", "rope.model=reduced", "rope.model=pendulum"}) {
+    refused({"ground.height=10", model}, "rope.length");
+    refused({"ground.height=10", model, "initial.mode=stress_free"}, "rope.length");
+  }
 }
 
 // The default reduced rope carries the ground itself: a landed start and its lift-off stay
@@ -407,4 +453,102 @@ commands:
   EXPECT_EQ(mb.liftOffs(), 1);
   EXPECT_LT(worst, 0.01);
   EXPECT_NEAR(mb.factor(), ma.factor(), 0.01 * ma.factor());
+}
+
+// Scenes nobody ships (seeded draws, the same on every machine): a load of 0.5 to 12.5 t landed
+// at 15 m up to the load chart's radius (at most 50 m) on a ground 3 to 10 m up (the drum's 66 m
+// reach the lightest load's hook on the ground from there), friction 0 to 1, 10 cm of rope
+// lying on it, reeled in at 0.3 to 1 m/s by 1.6 m, held 2 s, lowered by as much onto the
+// ground, then 2 s with the hoist at rest. In the full, default
+// reduced and pendulum ropes: no numerical failure, one lift, the load on the ground at the end
+// within 1 cm of penetration, no energy created once the hoist is at rest (the contact and the
+// slack rope only dissipate), and the reduced rope's payload within 1 cm of full order's.
+TEST(GroundLanding, UnseenLoadsLiftAndSetDownWithoutFailureOrEnergyCreated) {
+  std::mt19937 rng(2026);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const std::string base = std::string("crane: ") + CRANE_TWIN_SOURCE_DIR +
+                           "/config/cranes/t8036.yaml\n"
+                           "duration: 10.0\ntime_step: 0.001\noutput_interval: 0.01\n"
+                           "structure: {model: modal, modes: 20}\n"
+                           "rope: {elements: 30, length: 60.0}\n"
+                           "initial: {mode: landed}\n";
+  for (int draw = 0; draw < 3; ++draw) {
+    // Within the load chart (rated moment 410 t m): the radius drawn up to where the mass may go.
+    // One draw from each third of the masses: a light, a middle and a heavy load.
+    const double mass = 500.0 + 4000.0 * (draw + unit(rng));
+    const double radius = 15.0 + (std::min(50.0, 410000.0 / mass) - 15.0) * unit(rng);
+    const double height = 3.0 + 7.0 * unit(rng), friction = unit(rng), v = 0.3 + 0.7 * unit(rng);
+    std::ostringstream text;
+    text << base << "payload: {mass: " << mass << "}\ntrolley: {radius: " << radius
+         << "}\nground: {height: " << height << ", friction: " << friction << "}\n";
+    const std::string scene = writeScene("unseen_" + std::to_string(draw), text.str());
+    // Reel in the 0.1 m lying on the load and 1.5 m more (the rope's stretch and the jib's sag
+    // under a rated load take up to about a metre of it before the load leaves the ground);
+    // hold; lower 1.6 m; at rest 2 s (the hoist ramps at 0.5 m/s^2: v / 0.5 s to stop).
+    const double up = 1.6 / v, stop = v / 0.5;
+    const double t_hold = up, t_lower = t_hold + 2.0, t_rest = t_lower + up;
+    const double quiet = t_rest + stop + 0.01;
+    std::ostringstream cmd;
+    cmd << "commands=[{t: 0, hoist_speed: " << -v << "}, {t: " << t_hold
+        << ", hoist_speed: 0}, {t: " << t_lower << ", hoist_speed: " << v << "}, {t: " << t_rest
+        << ", hoist_speed: 0}]";
+    std::vector<Eigen::Vector3d> payload_full;
+    for (const std::string model : {"full", "reduced", "pendulum"}) {
+      std::vector<std::string> sets = {"rope.model=" + model, cmd.str(),
+                                       "duration=" + std::to_string(quiet + 2.0)};
+      // The rope's top over the landed load (the drum's 66 m leaves rope lying on it), and the
+      // hanging length from there to the hook.
+      std::vector<std::string> probe_sets = sets;
+      probe_sets.push_back("rope.length=66");
+      const CraneModel probe = buildCraneModel(loadScene(scene, probe_sets));
+      std::unique_ptr<Simulation> landed = makeSimulation(probe);
+      landed->initialize();
+      const double top = landed->series().trolley.z();
+      const double reach = top - (probe.scene.ground->height + probe.scene.payload_height);
+      sets.push_back("rope.length=" + std::to_string(reach + 0.1));
+      const CraneModel m = buildCraneModel(loadScene(scene, sets));
+      std::unique_ptr<Simulation> sim = makeSimulation(m);
+      sim->initialize();
+      LiftOffMonitor monitor;
+      const double underside = m.scene.ground->height + m.scene.payload_height;
+      double penetration = 0.0, e_quiet = NAN, e_max_after = -1e300, worst = 0.0;
+      std::size_t row = 0;
+      const long steps = std::lround(m.scene.duration / m.scene.time_step);
+      bool failed = false;
+      for (long k = 1; k <= steps && !failed; ++k) {
+        try {
+          sim->step();
+        } catch (const std::exception& e) {
+          ADD_FAILURE() << model << " draw " << draw << ": " << e.what();
+          failed = true;
+        }
+        if (k % 10 != 0) continue;
+        const SeriesValues s = sim->series();
+        ASSERT_TRUE(std::isfinite(s.energy) && s.payload.allFinite()) << model << " " << s.t;
+        monitor.observe(s, staticTopTension(m, s.rope_length));
+        penetration = std::max(penetration, underside - s.payload.z());
+        if (s.t <= quiet + 1e-9) e_quiet = s.energy;
+        if (s.t >= quiet) e_max_after = std::max(e_max_after, s.energy);
+        if (model == "full") payload_full.push_back(s.payload);
+        if (model == "reduced" && row < payload_full.size()) {
+          worst = std::max(worst, (s.payload - payload_full[row]).norm());
+        }
+        ++row;
+      }
+      const SeriesValues end = sim->series();
+      std::printf(
+          "draw %d (%.0f kg, r %.1f m, ground %.2f m, mu %.2f, v %.2f m/s) %s: lifts %d, "
+          "phi_2 %.3f, penetration %.2e m, energy rise at rest %.2e J, landed %d, payload %.2e "
+          "m from full order, full-order steps %ld\n",
+          draw, mass, radius, height, friction, v, model.c_str(), monitor.liftOffs(),
+          monitor.factor(), penetration, e_max_after - e_quiet, end.payload_landed ? 1 : 0, worst,
+          sim->statistics().full_order_steps);
+      EXPECT_EQ(monitor.liftOffs(), 1) << model << " draw " << draw;
+      EXPECT_TRUE(end.payload_landed) << model << " draw " << draw;
+      EXPECT_LT(penetration, 0.01) << model << " draw " << draw;
+      EXPECT_LE(e_max_after, e_quiet + 1e-9 * std::abs(e_quiet) + 1e-6)
+          << model << " draw " << draw;
+      if (model == "reduced") EXPECT_LT(worst, 0.01) << "draw " << draw;
+    }
+  }
 }

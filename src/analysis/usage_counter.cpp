@@ -111,7 +111,12 @@ void UsageCounter::observe(const SeriesValues& row, const LiftOffMonitor& lift_o
     LiftRecord& l = lifts_.back();
     if (std::isnan(l.set_down)) {
       l.dynamic_factor = lift_off.lastFactor();
-      if (row.payload_landed && t > l.lift_off) l.set_down = t;
+      // Set down where the monitor confirms it (a touch during the lift is none), dated at the
+      // landing; a monitor started after the lift-off (a restored count) knows no lift: the
+      // first landed row then.
+      if (row.payload_landed && !lift_off.liftInProgress() && t > l.lift_off) {
+        l.set_down = std::max(lift_off.landingTime() + time_offset, l.lift_off);
+      }
     }
   }
   // Each hot spot's cycles as they close (the history itself is not kept).

@@ -19,16 +19,30 @@ LiftOffMonitor::LiftOffMonitor(double window) : window_(window) {
 
 void LiftOffMonitor::observe(const SeriesValues& row, double static_tension) {
   if (row.payload_landed) {
-    // A lift ended: the hoist must reel in anew. After a bounce (a lift not confirmed) the
-    // load lies as it lay before.
-    if (!was_landed_ && confirmed_) landed_length_ = row.rope_length;
-    landed_length_ = std::max(landed_length_, row.rope_length);
+    if (!was_landed_) {
+      landing_time_ = row.t;
+      landing_length_ = row.rope_length;
+    }
     was_landed_ = true;
     measuring_ = false;  // landed again: the window ends (and a bounce is forgotten)
+    if (lifted_) {
+      // A lifted load back on the ground: set down once it has lain kConfirmation (then the
+      // hoist must reel in anew from the landing's longest rope); a touch until then.
+      landing_length_ = std::max(landing_length_, row.rope_length);
+      if (row.t >= landing_time_ + kConfirmation - 1e-9) {
+        lifted_ = false;
+        ++set_downs_;
+        landed_length_ = landing_length_;
+      }
+      return;
+    }
+    // After a bounce (a lift not confirmed) the load lies as it lay before.
+    landed_length_ = std::max(landed_length_, row.rope_length);
     return;
   }
   if (was_landed_) {
     was_landed_ = false;
+    if (lifted_) return;  // a touch: the lift goes on (its window ended at the touch)
     measuring_ = true;
     confirmed_ = false;
     candidate_time_ = row.t;
@@ -44,6 +58,7 @@ void LiftOffMonitor::observe(const SeriesValues& row, double static_tension) {
   if (!confirmed_ && row.t >= candidate_time_ + kConfirmation &&
       landed_length_ - row.rope_length >= kReelIn) {
     confirmed_ = true;  // off the ground long enough: a lift, not a bounce
+    lifted_ = true;
     ++lift_offs_;
     last_time_ = candidate_time_;
   }

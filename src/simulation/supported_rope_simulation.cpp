@@ -239,10 +239,35 @@ CoupledState SupportedRopeSimulation::landedState() {
   return s;
 }
 
+// A hanging or released start with a ground: the unstretched rope (and rigging) from the
+// undeformed top along the start's direction must leave the load's underside above the ground
+// (stretch only lowers it): else the load would start inside the ground, or the static solve
+// would press it there.
+void SupportedRopeSimulation::checkHangsClearOfGround() const {
+  const Scene& sc = model_.scene;
+  const GroundContactParameters& g = ground_->parameters();
+  const Eigen::Vector3d top = support_->point(Eigen::VectorXd::Zero(support_->size()));
+  const Eigen::Vector3d dir =
+      swingDirection(sc.swing_deg * M_PI / 180.0, sc.swing_azimuth_deg * M_PI / 180.0);
+  const double reach = sc.rope.length + (sc.hasRigging() ? sc.hook_rigging_length : 0.0);
+  const double underside = top.z() + reach * dir.z() - g.payload_height;
+  if (underside > g.height) return;
+  char b[400];
+  std::snprintf(b, sizeof b,
+                ": key 'rope.length': %.4g m of rope from the rope's top (z = %.4g m) puts the "
+                "load's underside at z = %.4g m, %.4g m below ground.height %.4g m, before the "
+                "rope stretches (initial.mode: %s); a load resting on the ground starts with "
+                "initial.mode: landed",
+                sc.rope.length, top.z(), underside, g.height - underside, g.height,
+                name(sc.initial_mode));
+  throw InputError(sc.file + b);
+}
+
 CoupledState SupportedRopeSimulation::sceneInitialState() {
   const Scene& sc = model_.scene;
   const double th = sc.swing_deg * M_PI / 180.0, az = sc.swing_azimuth_deg * M_PI / 180.0;
   CoupledState s;
+  if (ground_ && sc.initial_mode != InitialMode::landed) checkHangsClearOfGround();
   if (sc.initial_mode == InitialMode::landed) {
     s = landedState();
   } else if (sc.initial_mode == InitialMode::stress_free) {

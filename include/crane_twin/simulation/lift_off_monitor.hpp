@@ -6,6 +6,10 @@
 //             shorter than the longest it was while the load lay (a load that lands again sooner
 //             bounced, one the hoist did not lift was thrown up by the structure or its swing:
 //             neither is a lift);
+//   set-down  once the lifted load has lain on the ground for kConfirmation, dated at the row
+//             it landed: a shorter touch (the jib's bounce lowering a load that had only just
+//             left the ground onto it again while the hoist reels in) is part of the lift, not
+//             a set-down and a second lift;
 //   phi_2     = max T_top(t) / T_static over [t_lift, t_lift + window], T_static the hanging
 //               weight at that row's rope length (staticTopTension);
 // a landing inside the window ends it. Sampled at the rows' interval: a peak of a tension
@@ -39,6 +43,12 @@ class LiftOffMonitor {
   double lastLiftOffTime() const { return last_time_; }
   /// Within a lift-off's window now (from the load's leaving, confirmed or not).
   bool measuring() const { return measuring_; }
+  /// A confirmed lift whose load has not been set down yet (touches included).
+  bool liftInProgress() const { return lifted_; }
+  /// Set-downs of lifted loads so far, and the time of the row the load landed on the ground
+  /// now or last [s].
+  int setDowns() const { return set_downs_; }
+  double landingTime() const { return landing_time_; }
   /// Warning bit kLiftOffOverDesignFactor for the row just observed: within a lift-off's window
   /// and its factor so far above design_phi2 (0: no check).
   int warningFor(double design_phi2) const {
@@ -50,6 +60,9 @@ class LiftOffMonitor {
  private:
   double window_;
   bool was_landed_ = false, measuring_ = false, confirmed_ = false;
+  bool lifted_ = false;                               ///< a confirmed lift not yet set down
+  double landing_time_ = 0.0, landing_length_ = 0.0;  ///< the current landing's start, max length
+  int set_downs_ = 0;
   /// The longest rope while the load lay on the ground since the last lift ended [m].
   double landed_length_ = 0.0;
   double candidate_time_ = 0.0, candidate_factor_ = 0.0;  ///< the window under way
