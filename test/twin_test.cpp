@@ -116,6 +116,26 @@ TEST(PayloadForecast, ThePendulumForecastsItsOwnFuture) {
   EXPECT_FALSE(f.failed);
 }
 
+TEST(PayloadForecast, ForecastsATwinThatCameBackFromAStartAtFullOrder) {
+  // A stress-free start the reduced rope does not carry: the twin and the forecaster's copy both
+  // begin at full order. Once the twin has handed back (reduced), the copy, which never
+  // integrated reduced, continues it, and at the twin's step its forecast is the twin's future.
+  const CraneModel m = live({"initial.mode=stress_free", "initial.swing_deg=3"});
+  std::unique_ptr<Simulation> twin = makeSimulation(m);
+  twin->initialize();
+  ASSERT_TRUE(twin->statistics().integrating_full_order);
+  while (twin->statistics().integrating_full_order && twin->time() < 10.0) twin->step();
+  ASSERT_FALSE(twin->statistics().integrating_full_order) << "no hand-back within 10 s";
+  PayloadForecaster same(m, 0.0);
+  const CommandEntry c = moving();
+  const PayloadForecast f = same.run(*twin, c, 5.0, 0.5);
+  twin->setCommand(c);
+  for (size_t i = 0; i < f.t.size(); ++i) {
+    while (twin->time() < f.t[i] - 1e-9) twin->step();
+    EXPECT_LT((f.payload[i] - twin->series().payload).norm(), 1e-9) << "t " << f.t[i];
+  }
+}
+
 TEST(PayloadForecast, AtTheTwinsStepItIsTheTwinsFutureAndAtTwiceTheStepClose) {
   const CraneModel m = live({"initial.swing_deg=4"});
   std::unique_ptr<Simulation> twin = makeSimulation(m);

@@ -60,7 +60,9 @@ bool InvariantReducedSimulation::startReduced(const CoupledState&) {
 void InvariantReducedSimulation::continueFrom(const Simulation& other) {
   const auto* o = dynamic_cast<const InvariantReducedSimulation*>(&other);
   if (!o) throw InputError("continueFrom: the other run is not a reduced (invariant) rope run");
-  if (o->state_.q.size() != state_.q.size() && !o->full_order_) {
+  // (against this run's basis, not its state: a run that began at full order has no reduced
+  // state yet)
+  if (!o->full_order_ && o->state_.q.size() != basis_->coordinates()) {
     throw InputError("continueFrom: the other run's basis has another size");
   }
   full_.continueFrom(o->full_);
