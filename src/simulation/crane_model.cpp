@@ -95,13 +95,17 @@ void computeHotSpots(CraneModel& m) {
 CraneModel buildCraneModel(const Scene& scene) {
   CraneModel m;
   m.scene = scene;
-  // Even a rigid structure needs the geometry (rail, jib tip, cab reference points).
-  if (scene.crane) {
-    m.structure =
-        std::make_shared<const TowerCraneStructure>(TowerCraneStructure::build(*scene.crane));
-  }
   setRopeAndLoad(m);
-  if (scene.structure_geometric_stiffness) addGeometricStiffness(m, *m.structure);
+  // Even a rigid structure needs the geometry (rail, jib tip, cab reference points); P-delta
+  // (refused without a crane) takes the built structure as its own.
+  if (scene.crane) {
+    TowerCraneStructure st = TowerCraneStructure::build(*scene.crane);
+    if (scene.structure_geometric_stiffness) {
+      addGeometricStiffness(m, std::move(st));
+    } else {
+      m.structure = std::make_shared<const TowerCraneStructure>(std::move(st));
+    }
+  }
   computeStructureModes(m);
   computeHotSpots(m);
   return m;

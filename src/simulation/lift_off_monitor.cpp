@@ -21,23 +21,19 @@ void LiftOffMonitor::observe(const SeriesValues& row, double static_tension) {
   if (row.payload_landed) {
     if (!was_landed_) {
       landing_time_ = row.t;
-      landing_length_ = row.rope_length;
+      // A lifted load's landing: the hoist must reel in anew from the longest rope it lies on
+      // from here (not read while the lift goes on). After a bounce (a lift not confirmed)
+      // the load lies as it lay before.
+      if (lifted_) landed_length_ = row.rope_length;
     }
     was_landed_ = true;
     measuring_ = false;  // landed again: the window ends (and a bounce is forgotten)
-    if (lifted_) {
-      // A lifted load back on the ground: set down once it has lain kConfirmation (then the
-      // hoist must reel in anew from the landing's longest rope); a touch until then.
-      landing_length_ = std::max(landing_length_, row.rope_length);
-      if (row.t >= landing_time_ + kConfirmation - 1e-9) {
-        lifted_ = false;
-        ++set_downs_;
-        landed_length_ = landing_length_;
-      }
-      return;
-    }
-    // After a bounce (a lift not confirmed) the load lies as it lay before.
     landed_length_ = std::max(landed_length_, row.rope_length);
+    // Set down once it has lain kConfirmation; a touch until then.
+    if (lifted_ && row.t >= landing_time_ + kConfirmation - 1e-9) {
+      lifted_ = false;
+      ++set_downs_;
+    }
     return;
   }
   if (was_landed_) {

@@ -243,12 +243,10 @@ CoupledState SupportedRopeSimulation::landedState() {
 // undeformed top along the start's direction must leave the load's underside above the ground
 // (stretch only lowers it): else the load would start inside the ground, or the static solve
 // would press it there.
-void SupportedRopeSimulation::checkHangsClearOfGround() const {
+void SupportedRopeSimulation::checkHangsClearOfGround(const Eigen::Vector3d& dir) const {
   const Scene& sc = model_.scene;
   const GroundContactParameters& g = ground_->parameters();
   const Eigen::Vector3d top = support_->point(Eigen::VectorXd::Zero(support_->size()));
-  const Eigen::Vector3d dir =
-      swingDirection(sc.swing_deg * M_PI / 180.0, sc.swing_azimuth_deg * M_PI / 180.0);
   const double reach = sc.rope.length + (sc.hasRigging() ? sc.hook_rigging_length : 0.0);
   const double underside = top.z() + reach * dir.z() - g.payload_height;
   if (underside > g.height) return;
@@ -267,7 +265,9 @@ CoupledState SupportedRopeSimulation::sceneInitialState() {
   const Scene& sc = model_.scene;
   const double th = sc.swing_deg * M_PI / 180.0, az = sc.swing_azimuth_deg * M_PI / 180.0;
   CoupledState s;
-  if (ground_ && sc.initial_mode != InitialMode::landed) checkHangsClearOfGround();
+  if (ground_ && sc.initial_mode != InitialMode::landed) {
+    checkHangsClearOfGround(swingDirection(th, az));
+  }
   if (sc.initial_mode == InitialMode::landed) {
     s = landedState();
   } else if (sc.initial_mode == InitialMode::stress_free) {

@@ -51,6 +51,7 @@ void rotateRopeAboutTop(Eigen::VectorXd& q, Eigen::VectorXd& v, const Eigen::Vec
 }
 
 void applyTwinCorrection(Simulation& sim, const SwayUpdate& u, const std::vector<int>& modes) {
+  CorrectableMotion& target = requireCapability<CorrectableMotion>(sim);  // before any work
   CoupledState f = sim.fullState();
   const std::vector<bool> blocks = sim.fullStatePositionBlocks();
   if (!modes.empty()) {
@@ -79,7 +80,7 @@ void applyTwinCorrection(Simulation& sim, const SwayUpdate& u, const std::vector
   rotateRopeAboutTop(
       f.q, f.v, Eigen::Vector3d(u.position_correction.x(), u.position_correction.y(), 0.0),
       Eigen::Vector3d(u.velocity_correction.x(), u.velocity_correction.y(), 0.0), blocks);
-  requireCapability<CorrectableMotion>(sim).setMotion(f);
+  target.setMotion(f);
 }
 
 namespace {

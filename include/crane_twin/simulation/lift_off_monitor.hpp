@@ -60,8 +60,8 @@ class LiftOffMonitor {
  private:
   double window_;
   bool was_landed_ = false, measuring_ = false, confirmed_ = false;
-  bool lifted_ = false;                               ///< a confirmed lift not yet set down
-  double landing_time_ = 0.0, landing_length_ = 0.0;  ///< the current landing's start, max length
+  bool lifted_ = false;        ///< a confirmed lift not yet set down
+  double landing_time_ = 0.0;  ///< the current (or last) landing's first row [s]
   int set_downs_ = 0;
   /// The longest rope while the load lay on the ground since the last lift ended [m].
   double landed_length_ = 0.0;

@@ -92,8 +92,9 @@ class SupportedRopeSimulation : public Simulation, public MeasuredWindInput {
   /// straight to it unloaded, the rest of rope.length lying on the load. Throws InputError
   /// naming rope.length where the rope cannot reach.
   CoupledState landedState();
-  /// InputError unless a start other than landed hangs the load clear of the ground.
-  void checkHangsClearOfGround() const;
+  /// InputError unless a start other than landed, its rope along `dir` from the top, hangs the
+  /// load clear of the ground.
+  void checkHangsClearOfGround(const Eigen::Vector3d& dir) const;
 
   /// Equilibrium with the chord at swing_rad from the vertical, azimuth az_rad (the solver's).
   virtual CoupledState swingEquilibrium(double swing_rad, double az_rad,
