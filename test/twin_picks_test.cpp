@@ -320,7 +320,7 @@ TEST(TwinPicks, ALandedLoadIsNotSwayCorrected) {
 
 TEST(TwinPicks, AToldThreeTonneTwinFindsTheRealFourTonnesAndSeesTheSetDown) {
   // The "real crane": full order, 4 t landed on a 1 m stack at 30 m (t8036_lift_off_slow),
-  // reeling 1.2 m of slack in at 0.3 m/s from t = 0 (lift-off near 4 s), holding from 6 s,
+  // reeling 1.2 m of slack in at 0.3 m/s from t = 0 (lift-off near 5 s), holding from 6 s,
   // lowering at 0.3 m/s from 16 s (set-down near 18 s) until 21 s. The twin (the default
   // reduced rope) is told 3 t and gets what a crane's sensors give: joints at 30 Hz (noise
   // 1e-4 rad, 5 mm), the load cell at 10 Hz (1 % noise).
@@ -344,6 +344,7 @@ TEST(TwinPicks, AToldThreeTonneTwinFindsTheRealFourTonnesAndSeesTheSetDown) {
   double real_lift = NAN, real_set_down = NAN, seen_set_down = NAN, twin_set_down = NAN;
   double payload_at_10s = NAN, model_at_10s = NAN;
   int mass_changes = 0;
+  long full_order_while_hanging = 0;  // twin steps at full order from 2 s after the lift-off
   bool real_landed = true;
   for (int k = 1; k <= static_cast<int>(24.0 / h); ++k) {
     real->step();
@@ -376,6 +377,10 @@ TEST(TwinPicks, AToldThreeTonneTwinFindsTheRealFourTonnesAndSeesTheSetDown) {
     }
     const SeriesValues tw = twin->series();
     ASSERT_TRUE(tw.payload.allFinite()) << tw.t;
+    if (!std::isnan(real_lift) && tw.t > real_lift + 2.0 && std::isnan(real_set_down) &&
+        twin->statistics().integrating_full_order) {
+      ++full_order_while_hanging;
+    }
     if (!std::isnan(real_lift) && std::isnan(payload_at_10s) && tw.t >= real_lift + 10.0) {
       payload_at_10s = runtime.payloadMassEstimate();
       model_at_10s = twin_model.scene.payload_mass;
@@ -390,10 +395,10 @@ TEST(TwinPicks, AToldThreeTonneTwinFindsTheRealFourTonnesAndSeesTheSetDown) {
   std::printf(
       "twin picks: real lift-off %.3f s, seen %.3f s; payload estimate %.1f kg (model %.1f kg) "
       "10 s after; %d load change(s); real set-down %.3f s, seen %.3f s, twin's own %.3f s; "
-      "twin hand-overs %ld, full-order steps %ld\n",
+      "twin hand-overs %ld, full-order steps %ld (%ld while the load hung)\n",
       real_lift, runtime.loadCell().lastLiftOff(), payload_at_10s, model_at_10s, mass_changes,
       real_set_down, seen_set_down, twin_set_down, twin->statistics().hand_overs,
-      twin->statistics().full_order_steps);
+      twin->statistics().full_order_steps, full_order_while_hanging);
   ASSERT_FALSE(std::isnan(real_lift));
   ASSERT_FALSE(std::isnan(real_set_down));
   EXPECT_EQ(runtime.loadCell().lifts(), 1);
@@ -405,6 +410,11 @@ TEST(TwinPicks, AToldThreeTonneTwinFindsTheRealFourTonnesAndSeesTheSetDown) {
   EXPECT_GE(seen_set_down, real_set_down);
   EXPECT_LT(seen_set_down, real_set_down + 1.0);
   EXPECT_LT(std::abs(twin_set_down - real_set_down), 1.0);
+  // The joints' noise does not hold the twin at full order: a slack rope shaken as it tightens
+  // may hand over at the lift-off, and the twin comes back (the hand-back's dwell is 1 s)
+  // while its load hangs. Raw samples drove the trolley at its acceleration limit at every
+  // sample, and the twin stayed at full order to the end.
+  EXPECT_EQ(full_order_while_hanging, 0);
 }
 
 }  // namespace

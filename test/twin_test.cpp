@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <random>
 
+#include "crane_twin/drives/joint_tracking_filter.hpp"
 #include "crane_twin/drives/measured_joint_follower.hpp"
 #include "crane_twin/integrators/coupled_state.hpp"
 #include "crane_twin/io/input_error.hpp"
@@ -272,6 +273,107 @@ TEST(SwayEstimator, LocksALinearPendulumOntoTheTruthFromNoisyMeasurements) {
   EXPECT_GT(e.positionSigma(), 0.001);
 }
 
+TEST(JointTrackingFilter, LagsAConstantAccelerationByItsClosedFormAndFollowsARateExactly) {
+  // Noise-free samples at 100 Hz (omega T = 0.04). A constant rate: followed exactly once the
+  // start (v = 0) has died out. A constant acceleration a: the continuous filter's steady
+  // lag, a / omega^2 in position and sqrt(2) a / omega in rate (the file's comment), to the
+  // sampling's O(omega T).
+  const double omega = 4.0, T = 0.01, a = 0.5, v = 0.4;
+  JointTrackingFilter rate_only(omega, false), accelerating(omega, false);
+  for (int k = 0; k <= 2000; ++k) {  // 20 s: e^(-omega t / sqrt(2)) = 1e-25
+    const double t = k * T;
+    rate_only.add(t, 3.0 + v * t);
+    accelerating.add(t, 0.5 * a * t * t);
+  }
+  const double t = 20.0;
+  EXPECT_NEAR(rate_only.position(), 3.0 + v * t, 1e-9);
+  EXPECT_NEAR(rate_only.rate(), v, 1e-9);
+  const double lag = 0.5 * a * t * t - accelerating.position();
+  const double rate_lag = a * t - accelerating.rate();
+  EXPECT_NEAR(lag, a / (omega * omega), 0.05 * a / (omega * omega));
+  EXPECT_NEAR(rate_lag, std::sqrt(2.0) * a / omega, 0.05 * std::sqrt(2.0) * a / omega);
+}
+
+TEST(JointTrackingFilter, PassesTheNoiseItsBandwidthSays) {
+  // White noise sigma at 30 Hz on a joint at rest: the steady variances are the continuous
+  // filter's, 3 / (2 sqrt(2)) omega T sigma^2 (position) and omega^3 T sigma^2 / (2 sqrt(2))
+  // (rate), to the sampling's O(omega T) and the sample's statistics (60 000 samples,
+  // correlated over about 1 / omega: some 2 % on a variance). An angle's innovations wrap: a
+  // slew angle measured about pi is filtered about pi, not about 0.
+  const double omega = 3.0, T = 1.0 / 30.0, sigma = 0.005;
+  std::mt19937 rng(2);
+  std::normal_distribution<double> noise(0.0, sigma);
+  JointTrackingFilter f(omega, false), angle(omega, true);
+  double sxx = 0.0, svv = 0.0, worst_angle = 0.0;
+  int n = 0;
+  for (int k = 0; k < 60000; ++k) {
+    const double e = noise(rng);
+    f.add(k * T, e);
+    const double y = 3.14159265358979323846 + e;
+    angle.add(k * T, std::atan2(std::sin(y), std::cos(y)));
+    if (k > 300) {
+      sxx += f.position() * f.position();
+      svv += f.rate() * f.rate();
+      ++n;
+      worst_angle = std::max(worst_angle, std::abs(std::cos(angle.position()) + 1.0));
+    }
+  }
+  const double pxx = 3.0 / (2.0 * std::sqrt(2.0)) * omega * T * sigma * sigma;
+  const double pvv = omega * omega * omega * T * sigma * sigma / (2.0 * std::sqrt(2.0));
+  EXPECT_NEAR(sxx / n, pxx, 0.15 * pxx);
+  EXPECT_NEAR(svv / n, pvv, 0.15 * pvv);
+  EXPECT_LT(worst_angle, 1e-3);
+}
+
+TEST(MeasuredJointFollower, ACraneAtRestStaysAtRestThroughItsEncodersNoise) {
+  // The real crane stands; its encoders give 30 Hz samples with noise 1e-4 rad and 5 mm. The
+  // model's drives (1 ms steps) stay within a few sigma of the truth, and the trolley's
+  // acceleration is what the filter's rate passes (JointTrackingFilter: about omega^2 sigma =
+  // 0.08 m/s^2, the position loop adding to it): under twice that. The raw samples and their
+  // 0.5 s slope, passed through, made the drive ramp every sample's new rate at its limit
+  // (0.40 m/s^2 RMS against the trolley's 0.5, the rope shaken).
+  const Scene scene = loadScene(kScenes + "t8036_live.yaml", {"trolley.radius=30"});
+  const CraneDescription& crane = *scene.crane;
+  CraneDrives drives(scene);
+  const JointFollowerSettings settings;
+  MeasuredJointFollower follower(settings);
+  std::mt19937 rng(9);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  const Eigen::Vector3d truth(drives.slewAngle(), drives.trolleyRadius(), drives.hoistLength());
+  const double dt = 0.001;
+  double worst_trolley = 0.0, worst_hoist = 0.0, sum_a2 = 0.0;
+  int n = 0;
+  double last_speed = 0.0;
+  for (int k = 0; k < 30000; ++k) {  // 30 s
+    const double t = k * dt;
+    if (k % 33 == 0) {
+      JointSample s;
+      s.t = t;
+      s.position = truth + Eigen::Vector3d(1e-4 * unit(rng), 5e-3 * unit(rng), 5e-3 * unit(rng));
+      ASSERT_EQ(follower.add(s, crane), "");
+    }
+    drives.setCommand(follower.command(t, drives, crane));
+    drives.advance(t, dt);
+    if (t > 5.0) {
+      worst_trolley = std::max(worst_trolley, std::abs(drives.trolleyRadius() - truth.y()));
+      worst_hoist = std::max(worst_hoist, std::abs(drives.hoistLength() - truth.z()));
+      const double acc = (drives.trolleySpeed() - last_speed) / dt;
+      sum_a2 += acc * acc;
+      ++n;
+    }
+    last_speed = drives.trolleySpeed();
+  }
+  const double rms_acceleration = std::sqrt(sum_a2 / n);
+  std::printf(
+      "at rest through 5 mm noise: trolley within %.2f mm, hoist within %.2f mm, trolley "
+      "acceleration RMS %.4f m/s^2\n",
+      1e3 * worst_trolley, 1e3 * worst_hoist, rms_acceleration);
+  EXPECT_LT(worst_trolley, 0.01);
+  EXPECT_LT(worst_hoist, 0.01);
+  const double omega = settings.tracking_bandwidth;
+  EXPECT_LT(rms_acceleration, 2.0 * omega * omega * 5e-3);
+}
+
 TEST(MeasuredJointFollower, FollowsJitteryMeasurementsWithinTheDriveLimitsAndBridgesAGap) {
   // A crane accelerating at its drives' limits to 0.05 rad/s of slewing, 0.4 m/s of trolley
   // travel out and 0.1 m/s of hoisting, measured at 20 Hz with +-10 ms jitter, no velocities,
@@ -282,6 +384,7 @@ TEST(MeasuredJointFollower, FollowsJitteryMeasurementsWithinTheDriveLimitsAndBri
   CraneDrives drives(scene);
   MeasuredJointFollower follower;
   std::mt19937 rng(3);
+  double worst_ramp = 0.0;
   std::uniform_real_distribution<double> jitter(-0.01, 0.01);
   // Speed v reached at acceleration a: x(t) = v t - v^2 / (2 a) after t = v / a.
   auto ramp = [](double t, double v, double a) {
@@ -314,13 +417,26 @@ TEST(MeasuredJointFollower, FollowsJitteryMeasurementsWithinTheDriveLimitsAndBri
     drives.advance(t, dt);
     EXPECT_LE(std::abs(drives.slewRate()), crane.slewing.max_speed + 1e-12);
     EXPECT_LE(std::abs(drives.trolleySpeed()), crane.trolley.max_speed + 1e-12);
+    if (t <= 5.0) {
+      worst_ramp = std::max(worst_ramp, std::abs(drives.trolleyRadius() - real(t + dt).y()));
+    }
     if (t > 5.0) {
       worst_slew = std::max(worst_slew, std::abs(drives.slewAngle() - real(t + dt).x()));
       worst_trolley = std::max(worst_trolley, std::abs(drives.trolleyRadius() - real(t + dt).y()));
     }
   }
+  std::printf(
+      "jittery ramps and a gap: after 5 s slew within %.2f mrad, trolley within %.1f mm; "
+      "trolley within %.1f mm while it accelerates\n",
+      1e3 * worst_slew, 1e3 * worst_trolley, 1e3 * worst_ramp);
   EXPECT_LT(worst_slew, 0.005);
   EXPECT_LT(worst_trolley, 0.05);
+  // While the trolley accelerates at a: the filter's steady lag a / omega^2 and the position
+  // loop's, which makes up the filter's rate lag sqrt(2) a / omega at the gain g (the filter's
+  // header and docs/twin.md "Following the crane").
+  const JointFollowerSettings settings;
+  const double omega = settings.tracking_bandwidth, a = crane.trolley.max_acceleration;
+  EXPECT_LT(worst_ramp, a / (omega * omega) + std::sqrt(2.0) * a / (omega * settings.gain));
   EXPECT_TRUE(stale_in_gap);
   // Refused: NaN, out of order, off the rail.
   JointSample bad;

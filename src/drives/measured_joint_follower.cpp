@@ -23,18 +23,23 @@ void JointFollowerSettings::check() const {
   positive(gain, "gain");
   positive(max_extrapolation, "max_extrapolation");
   positive(stale_after, "stale_after");
-  positive(velocity_window, "velocity_window");
+  positive(tracking_bandwidth, "tracking_bandwidth");
   positive(hold_window, "hold_window");
 }
 
 MeasuredJointFollower::MeasuredJointFollower(const JointFollowerSettings& settings)
-    : settings_(settings) {
+    : settings_(settings),
+      filters_{JointTrackingFilter(settings.tracking_bandwidth, true),
+               JointTrackingFilter(settings.tracking_bandwidth, false),
+               JointTrackingFilter(settings.tracking_bandwidth, false)} {
   settings_.check();
 }
 
 void MeasuredJointFollower::clear() {
   last_.reset();
   window_.clear();
+  blend_time_ = 0.0;
+  for (JointTrackingFilter& f : filters_) f.restart();
 }
 
 std::string MeasuredJointFollower::add(const JointSample& s, const CraneDescription& crane) {
@@ -58,10 +63,35 @@ std::string MeasuredJointFollower::add(const JointSample& s, const CraneDescript
                   std::to_string(crane.min_rope_length) + ", " +
                   std::to_string(crane.max_rope_length) + "]");
   }
+  // What the command followed at s.t, before this sample (a gap beyond max_extrapolation
+  // is not bridged: then nothing to blend from).
+  const bool blend = last_ && s.t - last_->t <= settings_.max_extrapolation;
+  Estimate before;
+  if (blend) before = estimate(s.t);
   if (last_ && s.t == last_->t && !window_.empty()) window_.pop_back();  // the newer wins
+  for (int a = 0; a < 3; ++a) filters_[a].add(s.t, s.position[a]);
+  const double previous = last_ ? last_->t : s.t;
   last_ = s;
+  if (s.velocity) {
+    position_ = s.position;
+    rate_ = *s.velocity;
+  } else {
+    for (int a = 0; a < 3; ++a) {
+      position_[a] = filters_[a].position();
+      rate_[a] = filters_[a].rate();
+    }
+  }
+  blend_offset_ = Eigen::Vector3d::Zero();
+  blend_rate_ = Eigen::Vector3d::Zero();
+  blend_time_ = 0.0;
+  if (blend) {
+    blend_offset_ = before.position - position_;
+    blend_offset_.x() = wrapAngle(blend_offset_.x());
+    blend_rate_ = before.rate - rate_;
+    blend_time_ = std::min(s.t - previous, settings_.stale_after);
+  }
   window_.push_back(s);
-  const double keep = std::max(settings_.velocity_window, settings_.hold_window);
+  const double keep = settings_.hold_window;
   while (window_.size() > 2 && window_.front().t < s.t - keep) {
     window_.pop_front();
   }
@@ -74,11 +104,24 @@ double MeasuredJointFollower::age(double t) const {
 
 bool MeasuredJointFollower::stale(double t) const { return !(age(t) <= settings_.stale_after); }
 
-Eigen::Vector3d MeasuredJointFollower::rates(double t) const {
-  if (!last_ || !(age(t) <= settings_.max_extrapolation)) return Eigen::Vector3d::Zero();
-  if (last_->velocity) return *last_->velocity;
-  return slope(settings_.velocity_window);
+MeasuredJointFollower::Estimate MeasuredJointFollower::estimate(double t) const {
+  // x* = x_k + v_k a + w (dx + dv a), rate v_k + w dv, a = t - t_k (>= 0), the blend's weight
+  // w = 1 - a / blend_time falling to 0 (the header); beyond max_extrapolation the last
+  // position at rest.
+  Estimate e;
+  if (!last_) return e;
+  const double ahead = std::max(t - last_->t, 0.0);
+  if (!(ahead <= settings_.max_extrapolation)) {
+    e.position = position_;
+    return e;
+  }
+  const double w = ahead < blend_time_ ? 1.0 - ahead / blend_time_ : 0.0;
+  e.rate = rate_ + w * blend_rate_;
+  e.position = position_ + rate_ * ahead + w * (blend_offset_ + blend_rate_ * ahead);
+  return e;
 }
+
+Eigen::Vector3d MeasuredJointFollower::rates(double t) const { return estimate(t).rate; }
 
 Eigen::Vector3d MeasuredJointFollower::holdRates(double t) const {
   if (!last_ || !(age(t) <= settings_.max_extrapolation)) return Eigen::Vector3d::Zero();
@@ -115,9 +158,9 @@ CommandEntry MeasuredJointFollower::command(double t, const CraneDrives& drives,
   CommandEntry c;
   c.t = t;
   if (!last_) return c;
-  const Eigen::Vector3d v = rates(t);
-  const double ahead = std::clamp(t - last_->t, 0.0, settings_.max_extrapolation);
-  const Eigen::Vector3d target = last_->position + v * ahead;
+  const Estimate target_now = estimate(t);
+  const Eigen::Vector3d& v = target_now.rate;
+  const Eigen::Vector3d& target = target_now.position;
   const Eigen::Vector3d model(drives.slewAngle(), drives.trolleyRadius(), drives.hoistLength());
   Eigen::Vector3d e = target - model;
   e.x() = wrapAngle(e.x());

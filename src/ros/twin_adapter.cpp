@@ -24,6 +24,7 @@ TwinSettings readTwinSettings(const ros::NodeHandle& pnh) {
   optionalParam(pnh, "follow_gain", s.follower.gain, "a number");
   optionalParam(pnh, "joint_extrapolation", s.follower.max_extrapolation, "a number");
   optionalParam(pnh, "joint_stale_after", s.follower.stale_after, "a number");
+  optionalParam(pnh, "joint_tracking_bandwidth", s.follower.tracking_bandwidth, "a number");
   optionalParam(pnh, "payload_noise", s.estimator.measurement_noise, "a number");
   optionalParam(pnh, "sway_process_noise", s.estimator.process_noise, "a number");
   optionalParam(pnh, "initial_sway_sigma", s.estimator.initial_position_sigma, "a number");
@@ -37,6 +38,7 @@ TwinSettings readTwinSettings(const ros::NodeHandle& pnh) {
   requireFinite("follow_gain", s.follower.gain, 0.0, true);
   requireFinite("joint_extrapolation", s.follower.max_extrapolation, 0.0, true);
   requireFinite("joint_stale_after", s.follower.stale_after, 0.0, true);
+  requireFinite("joint_tracking_bandwidth", s.follower.tracking_bandwidth, 0.0, true);
   requireFinite("payload_noise", s.estimator.measurement_noise, 0.0, true);
   requireFinite("sway_process_noise", s.estimator.process_noise, 0.0, true);
   requireFinite("initial_sway_sigma", s.estimator.initial_position_sigma, 0.0, true);
