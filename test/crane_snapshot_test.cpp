@@ -202,6 +202,24 @@ TEST(CraneSnapshot, ReducedModelSnapshotEqualsItsExpandedState) {
   EXPECT_LT((s.rope_curve.front() - sim.ropeNode(0)).norm(), 1e-12);
 }
 
+TEST(CraneSnapshot, TheHoistsLengthIsWhatTheDrumPaidOutThePileOnALandedLoadIncluded) {
+  // t8036_lift_off_slow: 3.6 t landed with about 1.2 m of slack rope (the scene's comment)
+  // lying on it, reeled in at 0.3 m/s from t = 0. The hoist joint (what a drum encoder
+  // measures, and what a twin's follower compares with its own drive) is the drive's length;
+  // the hanging length stays while the pile is reeled in.
+  CraneSimulation sim(buildCraneModel(
+      loadScene(kScenes + "t8036_lift_off_slow.yaml", {"rope.model=full", "rope.elements=20"})));
+  sim.initialize();
+  const CraneSnapshot start = snapshotOf(sim);
+  EXPECT_EQ(start.hoist_length, sim.drives().hoistLength());
+  EXPECT_NEAR(start.hoist_length - start.rope_length, 1.2, 0.1);
+  while (sim.time() < 1.0) sim.step();
+  const CraneSnapshot later = snapshotOf(sim);
+  EXPECT_EQ(later.hoist_length, sim.drives().hoistLength());
+  EXPECT_LT(later.hoist_length, start.hoist_length - 0.15);  // 0.3 m/s after its ramp
+  EXPECT_NEAR(later.rope_length, start.rope_length, 1e-3);
+}
+
 TEST(CraneSnapshot, AnchoredRopeHasNoStructure) {
   CraneSimulation sim(buildCraneModel(
       loadScene(kScenes + "rope_pendulum_chrono.yaml", {"rope.elements=10", "time_step=0.01"})));

@@ -548,7 +548,9 @@ TEST(GroundLanding, UnseenLoadsLiftAndSetDownWithoutFailureOrEnergyCreated) {
       EXPECT_LT(penetration, 0.01) << model << " draw " << draw;
       EXPECT_LE(e_max_after, e_quiet + 1e-9 * std::abs(e_quiet) + 1e-6)
           << model << " draw " << draw;
-      if (model == "reduced") EXPECT_LT(worst, 0.01) << "draw " << draw;
+      if (model == "reduced") {
+        EXPECT_LT(worst, 0.01) << "draw " << draw;
+      }
     }
   }
 }

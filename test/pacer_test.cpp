@@ -59,6 +59,27 @@ TEST(Pacer, ALagBeyondTheMarginReanchorsInsteadOfRacing) {
   EXPECT_DOUBLE_EQ(d.target, 0.05);
 }
 
+TEST(Pacer, WithACatchUpALagWithinItIsRacedBack) {
+  // A twin's pacing (catch_up 5 s): 3 s behind, it steps at once to the next publication and
+  // keeps doing so until it is on time; 5.5 s behind, it re-anchors.
+  PacerSettings s = settings(1.0, 0.1);
+  s.catch_up = 5.0;
+  Pacer p(s);
+  p.restart(0.0, 0.0);
+  Pacer::Decision d = p.decide(3.0, 0.0, 0.1, kNone, 0.0);
+  EXPECT_EQ(p.overruns(), 0);
+  EXPECT_EQ(d.wait, Pacer::Wait::none);
+  EXPECT_DOUBLE_EQ(d.target, 0.1);
+  d = p.decide(3.01, 2.9, 3.0, kNone, 0.0);  // still behind the paced 3.01: on to 3.0
+  EXPECT_DOUBLE_EQ(d.target, 3.0);
+  d = p.decide(3.02, 3.02, 3.1, kNone, 0.0);  // on time: paced again
+  EXPECT_EQ(d.wait, Pacer::Wait::wall);
+  d = p.decide(8.6, 3.02, 3.1, kNone, 0.0);
+  EXPECT_EQ(p.overruns(), 1);
+  s.catch_up = -1.0;
+  EXPECT_THROW(Pacer{s}, std::invalid_argument);
+}
+
 TEST(Pacer, TheClocksOwnerWaitsForItsSlowestFollower) {
   Pacer p(settings(0.0, 0.1));
   // A follower that has not reported yet holds the run.

@@ -5,12 +5,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "crane_twin/io/scene.hpp"
 #include "crane_twin/simulation/simulation.hpp"
+#include "crane_twin/twin/timed_input_queue.hpp"
 
 namespace crane_twin {
 namespace {
@@ -130,6 +132,41 @@ TEST(TwinRuntime, AStepBeforeRestartIsAnError) {
   SwayEstimatorSettings bad;
   bad.gate = -1.0;
   EXPECT_THROW((TwinRuntime{bad, JointFollowerSettings{}}), std::invalid_argument);
+}
+
+TEST(TimedInputQueue, HoldsWhatTheTwinHasNotReachedAndReleasesItAtItsOwnTime) {
+  // Measurements taken at 1.0, 1.2, 3.5 and 40 s (the last from a clock 40 s apart) and one
+  // without a time, arriving in that order while the twin is at 1.1 s, with a 5 s horizon.
+  TimedInputQueue<double> q(100);
+  for (double t : {1.0, 1.2, 3.5}) q.push(t);
+  std::vector<std::pair<double, double>> out;  // item, released at
+  auto take = [&](double item, double at) { out.emplace_back(item, at); };
+  auto time_of = [](double item) { return item; };
+  q.release(1.1, 5.0, time_of, take);  // 1.0 due, 1.2 held (and 3.5 behind it)
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0], std::make_pair(1.0, 1.0));
+  EXPECT_EQ(q.size(), 2u);
+  q.release(3.0, 5.0, time_of, take);  // 1.2 due at its own time; 3.5 still ahead
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[1], std::make_pair(1.2, 1.2));
+  q.push(40.0);
+  q.push(NAN);
+  q.release(3.6, 5.0, time_of, take);  // 3.5 at 3.5; 40 beyond the horizon and NaN: now
+  ASSERT_EQ(out.size(), 5u);
+  EXPECT_EQ(out[2], std::make_pair(3.5, 3.5));
+  EXPECT_EQ(out[3], std::make_pair(40.0, 3.6));
+  EXPECT_TRUE(std::isnan(out[4].first));
+  EXPECT_EQ(out[4].second, 3.6);
+  EXPECT_EQ(q.size(), 0u);
+  // Full: the oldest goes, counted.
+  TimedInputQueue<double> small(2);
+  for (double t : {10.0, 11.0, 12.0}) small.push(t);
+  EXPECT_EQ(small.dropped(), 1);
+  out.clear();
+  small.release(20.0, 5.0, time_of, take);
+  ASSERT_EQ(out.size(), 2u);
+  EXPECT_EQ(out[0].first, 11.0);
+  EXPECT_THROW(TimedInputQueue<double>(0), std::invalid_argument);
 }
 
 }  // namespace

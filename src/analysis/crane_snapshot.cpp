@@ -71,6 +71,7 @@ CraneSnapshot snapshotOf(const Simulation& sim, const SnapshotOptions& options) 
   s.trolley_radius = drives.trolleyRadius();
   s.trolley_speed = drives.trolleySpeed();
   s.rope_length = s.series.rope_length;
+  s.hoist_length = drives.hoistLength();
   s.hoist_speed = drives.hoistSpeed();
 
   s.rope_curve = sim.ropeCurve(options.samples_per_element);

@@ -303,6 +303,9 @@ void CraneSimNode::run() {
   pacing.publish_period = period;
   pacing.time_step = dt;
   pacing.follow_clock = settings_.follow_clock;
+  // A twin keeps the crane's time: it races back from a lag within its catch-up (its
+  // measurements held until it gets there, TwinAdapter).
+  if (settings_.twin.measured_input) pacing.catch_up = settings_.twin.catch_up;
   pacer_ = std::make_unique<Pacer>(pacing);
   std::vector<const ros::Publisher*> own = out_->publishers();
   own.push_back(&inputs_->appliedPublisher());
@@ -351,8 +354,16 @@ void CraneSimNode::run() {
         follower_t_.empty() ? std::numeric_limits<double>::infinity()
                             : *std::min_element(follower_t_.begin(), follower_t_.end()) - t_offset_;
     const double clock = settings_.follow_clock ? ros::Time::now().toSec() - t_offset_ : 0.0;
+    const long overruns = pacer_->overruns();
     const Pacer::Decision pace =
         pacer_->decide(now.toSec(), sim_->time(), next_publish_, slowest, clock);
+    if (pacer_->overruns() > overruns && settings_.twin.measured_input &&
+        !settings_.publish_clock && !settings_.follow_clock) {
+      // A twin that fell further behind than its catch-up starts again from the present: its
+      // time maps to the wall's again, so the crane's next measurements are due at once and
+      // its states are stamped when they are valid.
+      stamp_origin_ = ros::Time::now() - ros::Duration(t_offset_ + sim_->time());
+    }
     if (pace.wait == Pacer::Wait::followers) {
       if ((now - last_warn_wall_).toSec() >= 5.0 && !std::isfinite(slowest)) {
         last_warn_wall_ = now;

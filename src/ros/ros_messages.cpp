@@ -88,7 +88,7 @@ sensor_msgs::JointState toJointState(const CraneSnapshot& s, const ros::Time& st
   sensor_msgs::JointState j;
   j.header.stamp = stamp;
   j.name.assign(kJointNames, kJointNames + 3);
-  j.position = {s.slew_angle, s.trolley_radius, s.rope_length};
+  j.position = {s.slew_angle, s.trolley_radius, s.hoist_length};
   j.velocity = {s.slew_rate, s.trolley_speed, s.hoist_speed};
   j.effort = {0.0, 0.0, s.series.rope_top_tension};
   return j;

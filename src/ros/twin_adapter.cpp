@@ -31,6 +31,7 @@ TwinSettings readTwinSettings(const ros::NodeHandle& pnh) {
   optionalParam(pnh, "initial_sway_rate_sigma", s.estimator.initial_velocity_sigma, "a number");
   optionalParam(pnh, "innovation_gate", s.estimator.gate, "a number");
   optionalParam(pnh, "payload_timeout", s.payload_timeout, "a number");
+  optionalParam(pnh, "twin_catch_up", s.catch_up, "a number");
   optionalParam(pnh, "forecast_horizon", s.forecast_horizon, "a number");
   optionalParam(pnh, "forecast_rate", s.forecast_rate, "a number");
   optionalParam(pnh, "forecast_time_step", s.forecast_time_step, "a number");
@@ -45,6 +46,7 @@ TwinSettings readTwinSettings(const ros::NodeHandle& pnh) {
   requireFinite("initial_sway_rate_sigma", s.estimator.initial_velocity_sigma, 0.0, true);
   requireFinite("innovation_gate", s.estimator.gate, 0.0, true);
   requireFinite("payload_timeout", s.payload_timeout, 0.0, true);
+  requireFinite("twin_catch_up", s.catch_up, 0.0, false);
   requireFinite("forecast_horizon", s.forecast_horizon, 0.0, true);
   requireFinite("forecast_rate", s.forecast_rate, 0.0, false);
   requireFinite("forecast_time_step", s.forecast_time_step, 0.0, false);
@@ -74,6 +76,7 @@ void TwinAdapter::restart(const CraneModel& model, const Simulation& sim) {
   runtime_.restart(model, sim);
   joints_in_.clear();
   payload_in_.clear();
+  tension_in_.clear();
   rebuildForecaster(model);
   if (settings_.measured_input && !crane_) {
     throw InputError("parameter '~input' 'measured' needs a scene with a crane");
@@ -113,8 +116,9 @@ void TwinAdapter::warn(const std::string& what) {
 
 void TwinAdapter::onJoints(const sensor_msgs::JointState::ConstPtr& m) {
   if (!settings_.measured_input) return;
-  joints_in_.push_back(*m);
-  if (joints_in_.size() > 1000) joints_in_.pop_front();
+  sensor_msgs::JointState j = *m;
+  if (j.header.stamp.isZero()) j.header.stamp = ros::Time::now();  // on arrival
+  joints_in_.push(std::move(j));
 }
 
 void TwinAdapter::onPayload(const geometry_msgs::PointStamped::ConstPtr& m) {
@@ -134,8 +138,7 @@ void TwinAdapter::onPayload(const geometry_msgs::PointStamped::ConstPtr& m) {
     runtime_.countRefusedPayload();
     return warn("crane/measured_payload with a non-finite coordinate refused");
   }
-  payload_in_.emplace_back(m->header.stamp, base);
-  if (payload_in_.size() > 100) payload_in_.pop_front();
+  payload_in_.push({m->header.stamp.isZero() ? ros::Time::now() : m->header.stamp, base});
 }
 
 void TwinAdapter::onTension(const std_msgs::Float64::ConstPtr& m) {
@@ -143,7 +146,7 @@ void TwinAdapter::onTension(const std_msgs::Float64::ConstPtr& m) {
     return warn("crane/measured_tension must be a finite force >= 0 N, got " +
                 std::to_string(m->data));
   }
-  runtime_.addTension(m->data);  // no time of its own: straight to the runtime's queue
+  tension_in_.push({ros::Time::now(), m->data});  // no stamp of its own: on arrival
 }
 
 CommandEntry TwinAdapter::followCommand(const Simulation& sim) const {
@@ -159,47 +162,42 @@ CommandEntry TwinAdapter::measuredRates(double t) const {
   return c;
 }
 
+void TwinAdapter::takeJoints(const sensor_msgs::JointState& m, double t) {
+  if (!crane_) return;
+  JointSample s;
+  s.t = t;
+  const char* names[3] = {"slew", "trolley", "hoist"};
+  const bool velocities = m.velocity.size() == m.name.size();
+  Eigen::Vector3d v = Eigen::Vector3d::Zero();
+  for (int a = 0; a < 3; ++a) {
+    int i = -1;
+    for (std::size_t k = 0; k < m.name.size(); ++k)
+      if (m.name[k] == names[a]) i = static_cast<int>(k);
+    if (i < 0 || i >= static_cast<int>(m.position.size())) {
+      return warn("crane/measured_joint_states needs positions of slew, trolley and hoist");
+    }
+    s.position[a] = m.position[i];
+    if (velocities) v[a] = m.velocity[i];
+  }
+  if (velocities) s.velocity = v;
+  const std::string why = runtime_.addJoints(s);
+  if (!why.empty()) warn("crane/measured_joint_states refused: " + why);
+}
+
 void TwinAdapter::afterStep(Simulation& sim, double h,
                             const std::function<double(const ros::Time&)>& time_of) {
-  const double now = sim.time();
-  // A stamp in the twin's future (clocks apart) counts as now; none: on arrival.
-  auto when = [&](const ros::Time& stamp) {
-    return stamp.isZero() ? now : std::min(time_of(stamp), now);
-  };
-  // Joint samples, stamped with the twin's time of arrival (docs/twin.md).
-  while (!joints_in_.empty()) {
-    const sensor_msgs::JointState m = joints_in_.front();
-    joints_in_.pop_front();
-    if (!crane_) continue;
-    JointSample s;
-    s.t = when(m.header.stamp);
-    const char* names[3] = {"slew", "trolley", "hoist"};
-    bool complete = true, velocities = m.velocity.size() == m.name.size();
-    Eigen::Vector3d v = Eigen::Vector3d::Zero();
-    for (int a = 0; a < 3; ++a) {
-      int i = -1;
-      for (std::size_t k = 0; k < m.name.size(); ++k)
-        if (m.name[k] == names[a]) i = static_cast<int>(k);
-      if (i < 0 || i >= static_cast<int>(m.position.size())) {
-        complete = false;
-        break;
-      }
-      s.position[a] = m.position[i];
-      if (velocities) v[a] = m.velocity[i];
-    }
-    if (!complete) {
-      warn("crane/measured_joint_states needs positions of slew, trolley and hoist");
-      continue;
-    }
-    if (velocities) s.velocity = v;
-    const std::string why = runtime_.addJoints(s);
-    if (!why.empty()) warn("crane/measured_joint_states refused: " + why);
-  }
-  // Payload positions, each at the twin time it was measured, then the runtime.
-  while (!payload_in_.empty()) {
-    runtime_.addPayload(when(payload_in_.front().first), payload_in_.front().second);
-    payload_in_.pop_front();
-  }
+  const double now = sim.time(), horizon = settings_.catch_up;
+  // Each measurement at the twin time it was taken, once the twin has reached it
+  // (TimedInputQueue: a stamp further ahead than the catch-up, clocks apart, counts as now).
+  joints_in_.release(
+      now, horizon, [&](const sensor_msgs::JointState& m) { return time_of(m.header.stamp); },
+      [&](const sensor_msgs::JointState& m, double at) { takeJoints(m, at); });
+  payload_in_.release(
+      now, horizon, [&](const auto& p) { return time_of(p.first); },
+      [&](const auto& p, double at) { runtime_.addPayload(at, p.second); });
+  tension_in_.release(
+      now, horizon, [&](const auto& p) { return time_of(p.first); },
+      [&](const auto& p, double) { runtime_.addTension(p.second); });
   runtime_.afterStep(sim, h, [this](const std::string& what) { warn(what); });
 }
 

@@ -22,6 +22,7 @@
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/twin/payload_forecast.hpp"
 #include "crane_twin/twin/sway_estimator.hpp"
+#include "crane_twin/twin/timed_input_queue.hpp"
 #include "crane_twin/twin/twin_runtime.hpp"
 #include "ros_messages.hpp"
 
@@ -32,7 +33,10 @@ struct TwinSettings {
   bool measured_input = false;  ///< ~input: commands | measured
   JointFollowerSettings follower;
   SwayEstimatorSettings estimator;
-  double payload_timeout = 2.0;         ///< [s] without a payload measurement: open loop
+  double payload_timeout = 2.0;  ///< [s] without a payload measurement: open loop
+  /// [s] how far behind real time the twin races to catch up, holding the crane's
+  /// measurements until it reaches their times (TimedInputQueue, Pacer's catch_up)
+  double catch_up = 5.0;
   double forecast_horizon = 30.0;       ///< [s]
   double forecast_rate = 1.0;           ///< [Hz of wall time], 0: no forecast
   double forecast_time_step = 0.01;     ///< [s], 0: the scene's
@@ -70,10 +74,12 @@ class TwinAdapter {
   bool measuredInput() const { return settings_.measured_input; }
   /// The rate command that follows the measured joints (measured input), at twin time t.
   CommandEntry followCommand(const Simulation& sim) const;
-  /// After a step of h seconds: the covariance propagated, the queued measurements applied
-  /// (joint samples to the follower, payload positions through the estimator into `sim`).
-  /// `time_of` maps a message stamp to twin time: a measurement counts at its stamp (latency
-  /// compensated), or on arrival when it has none.
+  /// After a step of h seconds: the covariance propagated, the measurements the twin's time
+  /// has reached applied (joint samples to the follower, payload positions through the
+  /// estimator into `sim`, tensions to the load cell). `time_of` maps a ROS time to twin time:
+  /// a measurement counts at its stamp (latency compensated), a tension or a measurement
+  /// without a stamp at its arrival; one the twin has not reached yet waits
+  /// (TimedInputQueue).
   void afterStep(Simulation& sim, double h, const std::function<double(const ros::Time&)>& time_of);
   /// Estimate at each publication; a forecast when one is due (`forecast_command`: what the
   /// drives will be asked, a held rate or a trajectory). `stamp_of` maps twin time to stamps.
@@ -89,6 +95,8 @@ class TwinAdapter {
   void onJoints(const sensor_msgs::JointState::ConstPtr& m);
   void onPayload(const geometry_msgs::PointStamped::ConstPtr& m);
   void onTension(const std_msgs::Float64::ConstPtr& m);
+  /// A joint sample taken at twin time t to the follower (a warning for an incomplete one).
+  void takeJoints(const sensor_msgs::JointState& m, double t);
   void warn(const std::string& what);
 
   ros::NodeHandle nh_;
@@ -105,8 +113,11 @@ class TwinAdapter {
   /// The forecaster for `model` (none with ~forecast_rate 0, or a model that cannot forecast).
   void rebuildForecaster(const CraneModel& model);
 
-  std::deque<sensor_msgs::JointState> joints_in_;
-  std::deque<std::pair<ros::Time, Eigen::Vector3d>> payload_in_;  ///< stamp, base frame
+  /// Measurements with the ROS time they were taken (stamp, else arrival) until the twin's
+  /// time reaches it.
+  TimedInputQueue<sensor_msgs::JointState> joints_in_{1000};
+  TimedInputQueue<std::pair<ros::Time, Eigen::Vector3d>> payload_in_{100};  ///< base frame
+  TimedInputQueue<std::pair<ros::Time, double>> tension_in_{200};           ///< [N]
   ros::Subscriber joint_sub_, payload_sub_, tension_sub_;
   ros::Publisher estimate_pub_, forecast_pub_;
 

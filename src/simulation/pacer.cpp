@@ -16,6 +16,9 @@ Pacer::Pacer(const PacerSettings& s) : settings_(s) {
     throw std::invalid_argument("pacer: the publication period must be > 0");
   if (!(s.time_step > 0.0) || !std::isfinite(s.time_step))
     throw std::invalid_argument("pacer: the time step must be > 0");
+  if (!std::isfinite(s.catch_up) || s.catch_up < 0.0)
+    throw std::invalid_argument("pacer: catch_up must be finite and >= 0, got " +
+                                std::to_string(s.catch_up));
 }
 
 void Pacer::restart(double wall, double sim) {
@@ -48,7 +51,8 @@ Pacer::Decision Pacer::decide(double wall, double sim, double next_publish, doub
   const double f = settings_.real_time_factor;
   if (f > 0.0) {
     double paced = anchor_sim_ + f * (wall - anchor_wall_);
-    if (paced - sim > 0.25 * f + period) {  // too far behind: re-anchor, do not race
+    // Too far behind: re-anchor, do not race.
+    if (paced - sim > std::max(0.25 * f + period, settings_.catch_up)) {
       ++overruns_;
       restart(wall, sim);
       paced = sim;

@@ -45,6 +45,9 @@ struct CraneSnapshot {
   double slew_angle = 0.0, slew_rate = 0.0;          ///< rad, rad/s
   double trolley_radius = 0.0, trolley_speed = 0.0;  ///< m, m/s
   double rope_length = 0.0, hoist_speed = 0.0;       ///< m, m/s (positive lowers)
+  /// The hoist drive's paid-out rope [m]: rope_length (what hangs) plus the rope lying on a
+  /// landed load; what a hoist's drum encoder measures (joint_states' `hoist`).
+  double hoist_length = 0.0;
   bool has_crane = false;
   FramePose slewing;                         ///< in world
   FramePose jib_tip, cab, trolley;           ///< in slewing

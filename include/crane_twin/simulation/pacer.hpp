@@ -8,8 +8,10 @@
 //    kFollowerLead publication periods ahead of the slowest follower's simulated time;
 //  - following another node's /clock (follow_clock): the clock's time;
 //  - real_time_factor f > 0: the paced time t_a + f (w - w_a) from an anchor (w_a, t_a); a lag
-//    of more than 0.25 f + one publication period re-anchors at the present (an overrun,
-//    counted) instead of racing to catch up.
+//    of more than max(0.25 f + one publication period, catch_up) re-anchors at the present (an
+//    overrun, counted) instead of racing to catch up. Within it the run steps as fast as it can
+//    until it is back on time: a twin (catch_up of seconds) keeps the crane's time through a
+//    slow stretch; a plain run (catch_up 0) does not race after a stall.
 // With f = 0 and nothing to follow the run steps from one publication to the next at once.
 // A step of h is taken while t + h / 2 <= target.
 #pragma once
@@ -21,6 +23,7 @@ struct PacerSettings {
   double publish_period = 1.0 / 30.0;  ///< simulated seconds between publications
   double time_step = 0.005;            ///< the simulation's step h [s]
   bool follow_clock = false;           ///< keep up with another node's /clock instead
+  double catch_up = 0.0;  ///< a lag [simulated s] the run still races to catch up (>= 0)
 };
 
 class Pacer {
@@ -36,7 +39,8 @@ class Pacer {
     double sleep = 0.0;  ///< suggested wall time to sleep before asking again [s]
   };
 
-  /// Throws std::invalid_argument for a negative or non-finite factor, a period or step not > 0.
+  /// Throws std::invalid_argument for a negative or non-finite factor or catch-up, a period or
+  /// step not > 0.
   explicit Pacer(const PacerSettings& settings);
 
   /// (Re)start pacing at wall time `wall` and simulated time `sim` (after a pause or reset).
