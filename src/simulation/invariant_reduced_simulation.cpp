@@ -138,7 +138,8 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // solver to the rope's length first.
   solver_->refreshLength();
   const double pe = solver_->projectionError(f.q);
-  if (pe > kHandBackTolerance) return false;
+  const bool firmly_taut = AncfRope::minNodalStrain(f.q) >= kFirmlyTautStrain * end_strain_;
+  if (pe > (firmly_taut ? kIndicatorTolerance : kHandBackTolerance)) return false;
   CoupledState r = solver_->project(f);
   try {
     solver_->initializeAccelerations(r);
