@@ -299,6 +299,11 @@ void TwinAdapter::diagnose(const Simulation& sim, diagnostic_msgs::DiagnosticSta
                                       : "fresh");
     addNumber(d, "joint_samples_refused", static_cast<double>(follower.refused()));
     if (follower.stale(t)) warn_level("measured joint input stale or missing");
+    // Measurements that did not fit the queue while the twin caught up (TimedInputQueue).
+    const long dropped = joints_in_.dropped() + payload_in_.dropped() + tension_in_.dropped();
+    addNumber(d, "measurements_dropped", static_cast<double>(dropped));
+    addNumber(d, "measurements_waiting",
+              static_cast<double>(joints_in_.size() + payload_in_.size() + tension_in_.size()));
   }
   const bool closed = t - runtime_.lastPayloadTime() <= settings_.payload_timeout;
   addKeyValue(d, "sway_estimator",

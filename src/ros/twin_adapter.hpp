@@ -115,9 +115,11 @@ class TwinAdapter {
 
   /// Measurements with the ROS time they were taken (stamp, else arrival) until the twin's
   /// time reaches it.
+  /// Each holds 10 s at 100 Hz, twice the default catch-up at the fastest rate docs/twin.md
+  /// names; beyond, the oldest is dropped (diagnostics `measurements_dropped`).
   TimedInputQueue<sensor_msgs::JointState> joints_in_{1000};
-  TimedInputQueue<std::pair<ros::Time, Eigen::Vector3d>> payload_in_{100};  ///< base frame
-  TimedInputQueue<std::pair<ros::Time, double>> tension_in_{200};           ///< [N]
+  TimedInputQueue<std::pair<ros::Time, Eigen::Vector3d>> payload_in_{1000};  ///< base frame
+  TimedInputQueue<std::pair<ros::Time, double>> tension_in_{1000};           ///< [N]
   ros::Subscriber joint_sub_, payload_sub_, tension_sub_;
   ros::Publisher estimate_pub_, forecast_pub_;
 

@@ -200,6 +200,8 @@ class TwinFollowsCrane(unittest.TestCase):
             diag = dict(rec.diag)
         say("diagnostics: " + ", ".join("%s=%s" % kv for kv in sorted(diag.items())))
         self.assertTrue(diag.get("sway_estimator", "").startswith("closed loop"), diag)
+        # A twin on time holds no measurement for long and drops none (TimedInputQueue).
+        self.assertEqual(diag.get("measurements_dropped"), "0", diag)
 
         # Measurements off: open loop, said so.
         rospy.wait_for_service("/crane_sensors/enable_payload", 10.0)

@@ -1,8 +1,8 @@
 // The twin follows a real crane's joints (docs/twin.md "Following the crane"): measured slew
-// angle [rad], trolley radius [m] and hoisted rope length [m], positions and optionally
-// velocities, at 10-100 Hz with jitter and gaps, turned into rate commands for the model's
-// drives, which ramp them at their acceleration limits (so the model's motion never has a step
-// in acceleration beyond the drives' limits).
+// angle [rad], trolley radius [m] and the rope the hoist drum has paid out [m] (the hoist
+// drive's length), positions and optionally velocities, at 10-100 Hz with jitter and gaps,
+// turned into rate commands for the model's drives, which ramp them at their acceleration
+// limits (so the model's motion never has a step in acceleration beyond the drives' limits).
 //
 // Per axis, with the newest sample at t_k and the time t:
 //   target x* = x_k + v_k min(t - t_k, max_extrapolation),      (bridges gaps and latency)
