@@ -36,18 +36,15 @@ class JointTrackingFilter {
   /// Forget the history: the next sample starts the filter again.
   void restart() { started_ = false; }
 
-  bool started() const { return started_; }
   /// Filtered position and rate at the newest sample's time.
   double position() const { return x_; }
   double rate() const { return v_; }
-  /// Time of the newest sample [s].
-  double time() const { return t_; }
 
  private:
   double omega_;
   bool angle_;
   bool started_ = false, steady_ = false;
-  double t_ = 0.0, x_ = 0.0, v_ = 0.0;
+  double t_ = 0.0, x_ = 0.0, v_ = 0.0;        ///< newest sample's time [s], position, rate
   double pxx_ = 0.0, pxv_ = 0.0, pvv_ = 0.0;  ///< covariance in units of r
 };
 

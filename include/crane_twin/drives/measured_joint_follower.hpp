@@ -43,9 +43,9 @@ struct JointFollowerSettings {
   double gain = 2.0;               ///< position loop gain [1/s]
   double max_extrapolation = 1.0;  ///< [s]
   double stale_after = 0.5;        ///< [s]
-  /// JointTrackingFilter's bandwidth [rad/s]: the model lags a / omega^2 behind an
-  /// acceleration a (3 cm at the T8036's 0.5 m/s^2 with 4 rad/s) and takes noise
-  /// proportional to omega^1.5 in its rates.
+  /// JointTrackingFilter's bandwidth [rad/s]: behind an acceleration a the filter lags
+  /// a / omega^2 and the position loop a further sqrt(2) a / (omega gain) (3 + 9 cm at the
+  /// T8036's 0.5 m/s^2 with 4 rad/s); the noise passed into the rates grows as omega^1.5.
   double tracking_bandwidth = 4.0;
   /// The longer window of the held rates a forecast assumes [s] (holdRates): the slope's noise
   /// falls as window^-1.5, and a forecast wants the rate, not the last half second's wobble.
