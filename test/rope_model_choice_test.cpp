@@ -32,8 +32,13 @@ TEST(RopeModelChoice, EachSettingBuildsTheModelItNames) {
       {{"rope.model=reduced"}, RopeModelKind::invariant_reduced},
       {{"rope.model=reduced", "rope.reduction=subdomains"}, RopeModelKind::subdomain_reduced},
       {{"rope.model=pendulum"}, RopeModelKind::pendulum},
-      // A rigging under the hook block: the reduced ropes run at full order.
-      {{"rope.model=reduced", "hook.mass=200", "hook.rigging_length=3"}, RopeModelKind::full},
+      // A rigging under the hook block: the default reduced rope carries it, the subdomain
+      // reducer runs it at full order.
+      {{"rope.model=reduced", "hook.mass=200", "hook.rigging_length=3"},
+       RopeModelKind::invariant_reduced},
+      {{"rope.model=reduced", "rope.reduction=subdomains", "hook.mass=200",
+        "hook.rigging_length=3"},
+       RopeModelKind::full},
       {{"rope.model=pendulum", "hook.mass=200", "hook.rigging_length=3"}, RopeModelKind::pendulum},
   };
   for (const Case& c : cases) {
@@ -48,7 +53,7 @@ TEST(RopeModelChoice, EachSettingBuildsTheModelItNames) {
       case RopeModelKind::invariant_reduced: {
         auto* s = dynamic_cast<InvariantReducedSimulation*>(sim.get());
         ASSERT_NE(s, nullptr);
-        EXPECT_EQ(integratedRopeCoordinates(m), s->basis().coordinates());
+        EXPECT_EQ(integratedRopeCoordinates(m), s->solver().coordinates());
         break;
       }
       case RopeModelKind::subdomain_reduced:

@@ -50,7 +50,7 @@ void AncfRope::setReevingLength(double equivalent_length) {
 
 double AncfRope::minNodalStrain(const Eigen::VectorXd& q) {
   double least = std::numeric_limits<double>::infinity();
-  for (int j = 0; 6 * j < q.size(); ++j)
+  for (int j = 0; 6 * j + 6 <= q.size(); ++j)
     least = std::min(least, q.segment<3>(6 * j + 3).norm() - 1.0);
   return least;
 }
@@ -59,6 +59,16 @@ double AncfRope::kineticEnergyRelativeToTop(const Eigen::VectorXd& v) const {
   Eigen::VectorXd w = v;
   for (int j = 0; j < nodes(); ++j) w.segment<3>(positionIndex(j)) -= v.head<3>();
   return 0.5 * w.dot(M_ * w);
+}
+
+AncfRope AncfRope::lumpedAtHook() const {
+  double end = end_mass_;
+  if (hasRigging()) end += hook_mass_ + rigging_->massPerLength() * rigging_->length();
+  AncfRope r(elements_, length(), element_.mass_per_length, rope_axial_stiffness_,
+             element_.bending_stiffness, end, gravity_, top_mass_);
+  r.setReevingLength(reeving_length_);
+  r.setTensionOnly(element_.tension_only);
+  return r;
 }
 
 void AncfRope::rescaleSlopes(Eigen::VectorXd& x, double from, double to) {
@@ -266,11 +276,12 @@ void AncfRope::setRigging(double length, double hook_mass, double mass_per_lengt
   assembleMass();
 }
 
-std::vector<Eigen::Vector3d> AncfRope::sampleCurve(const Eigen::VectorXd& q,
-                                                   int per_element) const {
-  if (!hasRigging()) return sampleRopeCurve(q, element_.length, per_element);
+std::vector<Eigen::Vector3d> AncfRope::sampleCurve(const Eigen::VectorXd& q, int per_element,
+                                                   double element_length) const {
+  const double le = element_length > 0.0 ? element_length : element_.length;
+  if (!hasRigging()) return sampleRopeCurve(q, le, per_element);
   std::vector<Eigen::Vector3d> points =
-      sampleRopeCurve(q.head(6 * (elements_ + 1)), element_.length, per_element);
+      sampleRopeCurve(q.head(6 * (elements_ + 1)), le, per_element);
   const Eigen::Vector3d hook = points.back(), load = q.tail<3>();
   for (int i = 1; i <= per_element; ++i) points.push_back(hook + (load - hook) * i / per_element);
   return points;

@@ -172,7 +172,9 @@ Eigen::VectorXd InvariantRopeBasis::projectForce(const Eigen::VectorXd& x, doubl
 InvariantRopeBasis::Projection::Projection(const InvariantRopeBasis& basis, const SparseMatrix& M,
                                            double L) {
   const Eigen::MatrixXd P = basis.scalarRows(L);
-  MsP_ = scalarBlock(M, 0) * P;
+  // (the hoist rope's rows: a rigging's payload point, after them, is not in the basis)
+  const int ns = static_cast<int>(P.rows());
+  MsP_ = SparseMatrix(scalarBlock(M, 0).topLeftCorner(ns, ns)) * P;
   Mr_ = P.transpose() * MsP_;
   ldlt_.compute(Mr_);
 }

@@ -122,7 +122,8 @@ void HandOverSimulation::sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
 }
 
 std::vector<Eigen::Vector3d> HandOverSimulation::ropeCurve(int per_element) const {
-  return sampleRopeCurve(fullState().q, ropeLength() / full_.rope().elements(), per_element);
+  return full_.rope().sampleCurve(fullState().q, per_element,
+                                  ropeLength() / full_.rope().elements());
 }
 
 RunStatistics HandOverSimulation::statistics() const {

@@ -26,7 +26,9 @@ InvariantBasisSettings invariantBasisSettings(const Scene& sc) {
 }
 
 int invariantRopeCoordinates(const CraneModel& m) {
-  return InvariantRopeBasis(sceneRope(m), invariantBasisSettings(m.scene)).coordinates();
+  const AncfRope rope = sceneRope(m);
+  return InvariantRopeBasis(rope.lumpedAtHook(), invariantBasisSettings(m.scene)).coordinates() +
+         (rope.hasRigging() ? 3 : 0);
 }
 
 HandOverSettings InvariantReducedSimulation::handOverSettingsFor() {
@@ -42,8 +44,10 @@ HandOverSettings InvariantReducedSimulation::handOverSettingsFor() {
 InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model)
     : HandOverSimulation(model, handOverSettingsFor()) {
   const Scene& sc = full_.model().scene;
-  // The basis of the rope at its scene length (CraneSimulation built it there).
-  basis_ = std::make_unique<InvariantRopeBasis>(full_.rope(), invariantBasisSettings(sc));
+  // The basis of the rope at its scene length (CraneSimulation built it there); a rigging's
+  // masses lumped at the hook for its shapes (InvariantReducedSolver: the rigging).
+  basis_ =
+      std::make_unique<InvariantRopeBasis>(full_.rope().lumpedAtHook(), invariantBasisSettings(sc));
   solver_ = std::make_unique<InvariantReducedSolver>(full_.rope(), *basis_, full_.support(),
                                                      integratorFor(sc), sc.time_step);
   solver_->setRopeDamping(sc.rope.damping);
@@ -62,7 +66,7 @@ void InvariantReducedSimulation::continueFrom(const Simulation& other) {
   if (!o) throw InputError("continueFrom: the other run is not a reduced (invariant) rope run");
   // (against this run's basis, not its state: a run that began at full order has no reduced
   // state yet)
-  if (!o->full_order_ && o->state_.q.size() != basis_->coordinates()) {
+  if (!o->full_order_ && o->state_.q.size() != solver_->coordinates()) {
     throw InputError("continueFrom: the other run's basis has another size");
   }
   full_.continueFrom(o->full_);
@@ -97,7 +101,7 @@ double InvariantReducedSimulation::swingEnergy(const CoupledState& f) const {
   // (m_end + mu L / 2) |g| l (1 - cos theta): the end mass and half the rope lifted by the chord's
   // angle theta from the hanging direction (l the chord's length).
   const Eigen::Vector3d g = full_.rope().gravity();
-  const Eigen::Vector3d c = AncfRope::nodePosition(f.q, full_.ropeNodes() - 1) - f.q.head<3>();
+  const Eigen::Vector3d c = full_.rope().position(f.q, full_.ropeNodes() - 1) - f.q.head<3>();
   const double l = c.norm(), gn = g.norm();
   if (!(l > 0.0) || !(gn > 0.0)) return 0.0;
   const CraneModel& m = full_.model();
@@ -129,7 +133,8 @@ double InvariantReducedSimulation::errorIndicator(const CoupledState& f) const {
   if (indicator_ldlt_.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
   const Eigen::VectorXd dq = indicator_ldlt_.solve(r.tail(r.size() - 3));
   double e = 0.0;
-  for (int j = 1; j < rope.nodes(); ++j) e = std::max(e, dq.segment<3>(6 * j - 3).norm());
+  for (int j = 1; j < rope.nodes(); ++j)
+    e = std::max(e, dq.segment<3>(rope.positionIndex(j) - 3).norm());
   return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
 }
 

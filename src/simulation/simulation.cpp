@@ -94,11 +94,10 @@ std::vector<bool> Simulation::fullStatePositionBlocks() const {
 RopeModelKind ropeModelOf(const Scene& sc) {
   if (sc.rope.model == RopeModel::full) return RopeModelKind::full;
   if (sc.rope.model == RopeModel::pendulum) return RopeModelKind::pendulum;
-  // The reduced ropes' bases carry no rigging yet: a scene with one runs at full order, the
+  if (sc.rope.reduction != RopeReduction::subdomains) return RopeModelKind::invariant_reduced;
+  // The subdomain reducer's basis carries no rigging: a scene with one runs at full order, the
   // answer the reduced rope must give (docs/model.md "Hook block").
-  if (sc.hasRigging()) return RopeModelKind::full;
-  return sc.rope.reduction == RopeReduction::subdomains ? RopeModelKind::subdomain_reduced
-                                                        : RopeModelKind::invariant_reduced;
+  return sc.hasRigging() ? RopeModelKind::full : RopeModelKind::subdomain_reduced;
 }
 
 int integratedRopeCoordinates(const CraneModel& m) {

@@ -49,8 +49,12 @@ InvariantReducedSolver::InvariantReducedSolver(const AncfRope& rope,
                                                double time_step, NewtonSettings newton)
     : rope_(rope), basis_(basis), support_(support), ga_(scheme), h_(time_step), newton_(newton) {
   if (!(time_step > 0.0)) throw std::invalid_argument("time step must be positive");
-  if (basis.nodes() != rope.nodes()) throw std::invalid_argument("basis and rope differ in nodes");
+  if (basis.nodes() != rope.elements() + 1)
+    throw std::invalid_argument("basis and rope differ in nodes");
   m_ = basis.shapes();
+  rigged_ = rope.hasRigging();
+  n_ = 3 * m_ + (rigged_ ? 3 : 0);
+  if (rigged_) bar_mass_ = rope.rigging().massMatrix();
   const int N = rope.elements();
   Eigen::VectorXd xg, wg;
   // The reduced quadrature (docs/model.md, and kQuadraturePoints above).
@@ -80,12 +84,14 @@ InvariantReducedSolver::InvariantReducedSolver(const AncfRope& rope,
   slope_sum_ = D1_.cwiseAbs().colwise().sum().maxCoeff();
   psi_top_ = P.row(0);
   psi_end_ = P.row(N);
-  // The rope's own mass in xi-units is mu L times a constant matrix (docs/model.md).
+  // The rope's own mass in xi-units is mu L times a constant matrix (docs/model.md); the hook
+  // node's point mass (the end mass, or the hook block and the bar's share of a rigging) apart.
   const double L = rope.length(), mu = rope.element().mass_per_length;
-  mass_hat_ = (InvariantRopeBasis::Projection(basis, rope.massMatrix(), L).scalarMass() -
-               rope.topMass() * psi_top_.transpose() * psi_top_ -
-               rope.endMass() * psi_end_.transpose() * psi_end_) /
-              (mu * L);
+  mass_hat_ =
+      (InvariantRopeBasis::Projection(basis, rope.massMatrix(), L).scalarMass() -
+       rope.topMass() * psi_top_.transpose() * psi_top_ -
+       (hookPointMass() + (rigged_ ? bar_mass_(0, 0) : 0.0)) * psi_end_.transpose() * psi_end_) /
+      (mu * L);
   refreshLength();
 }
 
@@ -99,11 +105,34 @@ void InvariantReducedSolver::setLength(double length) {
   L_ = length;
   Mrs_ = rope_.element().mass_per_length * L_ * mass_hat_ +
          rope_.topMass() * psi_top_.transpose() * psi_top_ +
-         rope_.endMass() * psi_end_.transpose() * psi_end_;
+         hookPointMass() * psi_end_.transpose() * psi_end_;
   Mrs_ = 0.5 * (Mrs_ + Mrs_.transpose()).eval();
-  // F_r = B^T M (1 (x) g) = M_rs e_0 (x) g: psi_0 = 1 is the uniform field.
-  gravity_.resize(3 * m_);
-  for (int k = 0; k < m_; ++k) gravity_.segment<3>(3 * k) = Mrs_(k, 0) * rope_.gravity();
+  // F_r = B^T M (1 (x) g) = M_r u_g: psi_0 = 1 (and the payload point) is the uniform field, u_g
+  // the translation by g.
+  Eigen::VectorXd ug = Eigen::VectorXd::Zero(n_);
+  ug.head<3>() = rope_.gravity();
+  if (rigged_) ug.tail<3>() = rope_.gravity();
+  gravity_ = massTimes(ug);
+}
+
+double InvariantReducedSolver::hookPointMass() const {
+  return rigged_ ? rope_.hookMass() : rope_.endMass();
+}
+
+Eigen::Vector3d InvariantReducedSolver::hookPoint(const Eigen::VectorXd& y) const {
+  return Eigen::Map<const Matrix3X>(y.data(), 3, m_) * psi_end_.transpose();
+}
+
+Vector6 InvariantReducedSolver::barCoordinates(const Eigen::VectorXd& y) const {
+  Vector6 b;
+  b << hookPoint(y), y.tail<3>();
+  return b;
+}
+
+// T^T Qb, T = [psi(1) (x) I3, 0; 0, I3]: a force on [r_n; r_p] as reduced rows.
+void InvariantReducedSolver::addBarForce(const Vector6& Qb, Eigen::VectorXd& Q) const {
+  for (int k = 0; k < m_; ++k) Q.segment<3>(3 * k) += psi_end_(k) * Qb.head<3>();
+  Q.tail<3>() += Qb.tail<3>();
 }
 
 // F_r = B^T F = gravity_ + sum_k [L int psi_k dxi f + psi_k(1) F_end] (x) e_k: the rope's external
@@ -113,17 +142,22 @@ Eigen::VectorXd InvariantReducedSolver::appliedForce() const {
   const Eigen::Vector3d& fe = rope_.externalEndForce();
   if (f.isZero() && fe.isZero()) return gravity_;
   Eigen::VectorXd F = gravity_;
-  for (int k = 0; k < m_; ++k) F.segment<3>(3 * k) += L_ * mass_hat_(k, 0) * f + psi_end_(k) * fe;
+  for (int k = 0; k < m_; ++k) F.segment<3>(3 * k) += L_ * mass_hat_(k, 0) * f;
+  F -= contactForce(fe);  // the end force acts where the ground does: the payload point
   return F;
 }
 
 Eigen::Vector3d InvariantReducedSolver::endPoint(const Eigen::VectorXd& y) const {
-  return Eigen::Map<const Matrix3X>(y.data(), 3, m_) * psi_end_.transpose();
+  return rigged_ ? Eigen::Vector3d(y.tail<3>()) : hookPoint(y);
 }
 
 Eigen::VectorXd InvariantReducedSolver::contactForce(const Eigen::Vector3d& f) const {
-  Eigen::VectorXd Q(3 * m_);
-  for (int k = 0; k < m_; ++k) Q.segment<3>(3 * k) = -psi_end_(k) * f;
+  Eigen::VectorXd Q = Eigen::VectorXd::Zero(n_);
+  if (rigged_) {
+    Q.tail<3>() = -f;
+  } else {
+    for (int k = 0; k < m_; ++k) Q.segment<3>(3 * k) = -psi_end_(k) * f;
+  }
   return Q;
 }
 
@@ -137,7 +171,11 @@ GroundContactForce InvariantReducedSolver::contactAt(const CoupledState& x) cons
 }
 
 Eigen::VectorXd InvariantReducedSolver::massTimes(const Eigen::VectorXd& x) const {
-  return kronTimes(Mrs_, x);
+  if (!rigged_) return kronTimes(Mrs_, x);
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(n_);
+  out.head(3 * m_) = kronTimes(Mrs_, x);
+  addBarForce(bar_mass_ * barCoordinates(x), out);
+  return out;
 }
 
 Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
@@ -148,7 +186,7 @@ Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
   const double c1 = 1.0 / L_, c2 = 1.0 / (L_ * L_), cEA = damping_ * EA;
   const bool damped = cEA > 0.0 && yd.size() == y.size();
   const bool tension_only = rope_.element().tension_only;
-  Eigen::VectorXd out = Eigen::VectorXd::Zero(3 * m_);
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(n_);
   double* Q = out.data();
   const double* A = y.data();
   const double* Ad = yd.data();
@@ -180,6 +218,18 @@ Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
     }
   }
   last_force_min_stretch_ = std::sqrt(min_stretch2);
+  if (rigged_) {
+    // The rigging bar on [r_n; r_p] (AncfRope::setRigging), its axial damping as the rope's.
+    const Vector6 b = barCoordinates(y);
+    Vector6 Qb;
+    rope_.rigging().elasticForce(b, Qb);
+    if (damped) {
+      Vector6 Qd;
+      rope_.rigging().dampingForce(damping_, b, barCoordinates(yd), Qd);
+      Qb += Qd;
+    }
+    addBarForce(Qb, out);
+  }
   return out;
 }
 
@@ -192,6 +242,7 @@ double InvariantReducedSolver::elasticEnergy(const Eigen::VectorXd& y) const {
   for (int g = 0; g < w_.size(); ++g)
     U += w_(g) * L_ *
          ancfCableEnergyDensity(EA, EI, Rx.col(g), Rxx.col(g), rope_.element().tension_only);
+  if (rigged_) U += rope_.rigging().elasticEnergy(barCoordinates(y));
   return U;
 }
 
@@ -239,7 +290,7 @@ double InvariantReducedSolver::slackLength(const Eigen::VectorXd& y) const {
 }
 
 Eigen::Vector3d InvariantReducedSolver::chord(const Eigen::VectorXd& y) const {
-  const Eigen::Vector3d c = basis_.nodePosition(y, rope_.nodes() - 1) - y.head<3>();
+  const Eigen::Vector3d c = hookPoint(y) - y.head<3>();
   const double n = c.norm();
   return n > 0.0 ? Eigen::Vector3d(c / n) : Eigen::Vector3d(0.0, 0.0, -1.0);
 }
@@ -281,7 +332,7 @@ bool InvariantReducedSolver::factorize(double a, double c, double k, const Eigen
   const Eigen::MatrixXd Kg = D1_ * wt.asDiagonal() * D1_.transpose();
   const Eigen::MatrixXd Ktr = Kg / L_ + (EI / (L_ * L_ * L_)) * Kb_;           // on I - d d^T
   const Eigen::MatrixXd Kax = (D1_ * wa.asDiagonal() * D1_.transpose()) / L_;  // on d d^T
-  const int n = 3 * m_;
+  const int n = n_;
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + 3, n + 3);
   for (int i = 0; i < m_; ++i)
     for (int j = 0; j < m_; ++j) {
@@ -289,10 +340,36 @@ bool InvariantReducedSolver::factorize(double a, double c, double k, const Eigen
                                     k * (Ktr(i, j) * tr + Kax(i, j) * dd) +
                                     c * damping_ * Kax(i, j) * dd;
       // The ground at the end point: psi_i(1) psi_j(1) (k K_c + c C_c).
-      if (ground_)
+      if (ground_ && !rigged_)
         J.block<3, 3>(3 * i, 3 * j) +=
             psi_end_(i) * psi_end_(j) * (k * contact_K_ + c * contact_C_);
     }
+  if (rigged_) {
+    // The bar's a M_b + c C_b + k K_b on [r_n; r_p] as T^T A_b T (T as addBarForce); in an
+    // energy-consistent step K_b is its discrete gradient's stand-in (PendulumRope). The ground
+    // acts on r_p.
+    const Vector6 b = barCoordinates(y);
+    Vector6 Qb;
+    Matrix6 Kb, Cb;
+    if (y0) {
+      rope_.rigging().discreteGradientForce(barCoordinates(*y0), b, Qb, &Kb);
+    } else {
+      rope_.rigging().elasticForce(b, Qb, &Kb);
+    }
+    rope_.rigging().dampingForce(damping_, b, Vector6::Zero(), Qb, &Cb);
+    Matrix6 Ab = a * bar_mass_ + c * Cb + k * Kb;
+    if (ground_) Ab.bottomRightCorner<3, 3>() += k * contact_K_ + c * contact_C_;
+    const int p = 3 * m_;
+    for (int i = 0; i < m_; ++i) {
+      for (int j = 0; j < m_; ++j)
+        J.block<3, 3>(3 * i, 3 * j) += psi_end_(i) * psi_end_(j) * Ab.topLeftCorner<3, 3>();
+      J.block<3, 3>(3 * i, p) += psi_end_(i) * Ab.topRightCorner<3, 3>();
+      J.block<3, 3>(p, 3 * i) += psi_end_(i) * Ab.bottomLeftCorner<3, 3>();
+    }
+    J.block<3, 3>(p, p) += Ab.bottomRightCorner<3, 3>();
+    fact_bar_taut_ = rope_.rigging().tension(b) > 0.0;
+    fact_bar_dir_ = (b.tail<3>() - b.head<3>()).normalized();
+  }
   J.block<3, 3>(n, 0).setIdentity();
   J.block<3, 3>(0, n).setIdentity();
   J.block<3, 3>(n, n) = -G;
@@ -307,7 +384,7 @@ bool InvariantReducedSolver::factorize(double a, double c, double k, const Eigen
 
 void InvariantReducedSolver::initializeAccelerations(CoupledState& s) {
   prepareSupportState(support_, s);
-  const int n = 3 * m_;
+  const int n = n_;
   Eigen::VectorXd Azr, rz;
   const Eigen::Matrix3d G = support_.setIterationWeights(1.0, 0.0, 0.0);
   if (!factorize(1.0, 0.0, 0.0, G, s.q))
@@ -377,7 +454,7 @@ bool InvariantReducedSolver::newton(
     const std::function<Eigen::VectorXd(const CoupledState&)>& residual, CoupledState& s,
     std::string& why, const Eigen::VectorXd* support_start_residual,
     const Eigen::VectorXd* secant_from) {
-  const int n = 3 * m_;
+  const int n = n_;
   int iterations = 0;
   double residual_min_stretch = -1.0, last_correction = 0.0;
   const RopeIncrement increment = [&](const CoupledState& x, const NewtonWeights& w,
@@ -400,7 +477,7 @@ bool InvariantReducedSolver::newton(
         w.stiffness != fact_k_ || (w.G - fact_G_).norm() > kSupportChange * fact_G_.norm() ||
         std::abs(L_ - fact_L_) > kLengthChange * L_ || (chord(x.q) - fact_d_).norm() > kChordTurn ||
         (iterations == 0 && last_iterations_ >= kSlowIterations) ||
-        (iterations > 0 && iterations % kSlowIterations == 0);
+        (iterations > 0 && iterations % kSlowIterations == 0) || barChanged(x.q);
     if (stale && !factorize(w.mass, w.damping, w.stiffness, w.G, x.q, secant_from)) {
       reason = "singular reduced iteration matrix";
       return false;
@@ -491,7 +568,13 @@ Eigen::VectorXd InvariantReducedSolver::discreteGradientForce(const CoupledState
     Fb.col(g) = (w_(g) / L_) * d.fb;
   }
   const Matrix3X QA = Fa * D1_.transpose() + Fb * D2_.transpose();
-  Eigen::VectorXd Q = Eigen::Map<const Eigen::VectorXd>(QA.data(), QA.size());
+  Eigen::VectorXd Q = Eigen::VectorXd::Zero(n_);
+  Q.head(3 * m_) = Eigen::Map<const Eigen::VectorXd>(QA.data(), QA.size());
+  if (rigged_) {
+    Vector6 Qb;
+    rope_.rigging().discreteGradientForce(barCoordinates(start.q), barCoordinates(y1), Qb);
+    addBarForce(Qb, Q);
+  }
   if (damping_ > 0.0) Q += dampingForce(0.5 * (start.q + y1), 0.5 * (start.v + v1));
   if (ground_) {
     Q += contactForce(
@@ -515,21 +598,46 @@ Eigen::VectorXd InvariantReducedSolver::dampingForce(const Eigen::VectorXd& y,
     Fa.col(g) = (w_(g) * cEA * t.dot(Rxd.col(g))) * t;
   }
   const Matrix3X QA = Fa * D1_.transpose();
-  return Eigen::Map<const Eigen::VectorXd>(QA.data(), QA.size());
+  Eigen::VectorXd Q = Eigen::VectorXd::Zero(n_);
+  Q.head(3 * m_) = Eigen::Map<const Eigen::VectorXd>(QA.data(), QA.size());
+  if (rigged_) {
+    Vector6 Qb;
+    rope_.rigging().dampingForce(damping_, barCoordinates(y), barCoordinates(yd), Qb);
+    addBarForce(Qb, Q);
+  }
+  return Q;
 }
 
 double InvariantReducedSolver::slackSwitchWorkError(const Eigen::VectorXd& y0,
                                                     const Eigen::VectorXd& y1) const {
+  double err = rigged_ ? barSwitchWorkError(barCoordinates(y0), barCoordinates(y1)) : 0.0;
   // Both ends in the linear range: the trapezoid is exact (ancfAxialSwitchWorkError).
   if (minStretchLowerBound(y0) - 1.0 >= kSlackBand && minStretchLowerBound(y1) - 1.0 >= kSlackBand)
-    return 0.0;
+    return err;
   const double EA = rope_.axialStiffnessAt(L_);
   const Eigen::RowVectorXd g0 = stretches(y0);
   const Eigen::RowVectorXd& g1 = stretches(y1);
-  double err = 0.0;
   for (int g = 0; g < w_.size(); ++g)
     err += w_(g) * L_ * ancfAxialSwitchWorkError(EA, g0(g) - 1.0, g1(g) - 1.0);
   return err;
+}
+
+// The bar's tension is linear in its length while taut: the trapezoid in the length misses only
+// where it switches, |(T0 + T1) / 2 (l1 - l0) - (U1 - U0)| (AncfRope::slackSwitchWorkError).
+double InvariantReducedSolver::barSwitchWorkError(const Vector6& b0, const Vector6& b1) const {
+  const PendulumRope& bar = rope_.rigging();
+  const double T0 = bar.tension(b0), T1 = bar.tension(b1);
+  if (T0 > 0.0 && T1 > 0.0) return 0.0;
+  const double l0 = (b0.tail<3>() - b0.head<3>()).norm(), l1 = (b1.tail<3>() - b1.head<3>()).norm();
+  return std::abs(0.5 * (T0 + T1) * (l1 - l0) - (bar.elasticEnergy(b1) - bar.elasticEnergy(b0)));
+}
+
+bool InvariantReducedSolver::barChanged(const Eigen::VectorXd& y) const {
+  if (!rigged_) return false;
+  const Vector6 b = barCoordinates(y);
+  const Eigen::Vector3d d = b.tail<3>() - b.head<3>();
+  return (rope_.rigging().tension(b) > 0.0) != fact_bar_taut_ ||
+         (d.normalized() - fact_bar_dir_).norm() > kChordTurn;
 }
 
 double InvariantReducedSolver::ropeEnergyCreated(const CoupledState& start,
@@ -569,29 +677,42 @@ const InvariantRopeBasis::Projection& InvariantReducedSolver::projection() const
 
 CoupledState InvariantReducedSolver::project(const CoupledState& full) const {
   const InvariantRopeBasis::Projection& P = projection();
+  // The hoist rope's part projected, a rigging's payload point kept as it is.
+  const auto reduce = [&](const Eigen::VectorXd& x) {
+    if (!rigged_) return P(x);
+    Eigen::VectorXd y(n_);
+    y << P(x), x.tail<3>();
+    return y;
+  };
   CoupledState r = full;
-  r.q = P(full.q);
+  r.q = reduce(full.q);
   r.q.head<3>() = full.q.head<3>();  // psi_k(0) = delta_k0: the top node exactly
-  r.v = P(full.v);
+  r.v = reduce(full.v);
   r.v.head<3>() = full.v.head<3>();
-  r.qdd = P(full.qdd);
-  r.a = full.a.size() == full.q.size() ? P(full.a) : r.qdd;
+  r.qdd = reduce(full.qdd);
+  r.a = full.a.size() == full.q.size() ? reduce(full.a) : r.qdd;
   return r;
 }
 
 CoupledState InvariantReducedSolver::expand(const CoupledState& reduced) const {
+  const auto grow = [&](const Eigen::VectorXd& y) {
+    if (!rigged_) return basis_.expand(y, L_);
+    Eigen::VectorXd x(rope_.dofs());
+    x << basis_.expand(y, L_), y.tail<3>();
+    return x;
+  };
   CoupledState f = reduced;
-  f.q = basis_.expand(reduced.q, L_);
-  f.v = basis_.expand(reduced.v, L_);
-  f.qdd = basis_.expand(reduced.qdd, L_);
-  f.a = basis_.expand(reduced.a, L_);
+  f.q = grow(reduced.q);
+  f.v = grow(reduced.v);
+  f.qdd = grow(reduced.qdd);
+  f.a = grow(reduced.a);
   return f;
 }
 
 double InvariantReducedSolver::projectionError(const Eigen::VectorXd& q) const {
   const Eigen::VectorXd y = projection()(q);
   double e = 0.0;
-  for (int j = 0; j < rope_.nodes(); ++j)
+  for (int j = 0; j <= rope_.elements(); ++j)
     e = std::max(e, (basis_.nodePosition(y, j) - q.segment<3>(6 * j)).norm());
   return e;
 }

@@ -58,10 +58,17 @@ class AncfRope {
   /// std::invalid_argument otherwise.
   void setRigging(double length, double hook_mass, double mass_per_length, double axial_stiffness);
   bool hasRigging() const { return rigging_.has_value(); }
+  /// This hoist rope without its rigging, the hook block, the bar's mass and the payload lumped
+  /// on its end node (same length, material, reeving, law): the rope whose hanging shapes the
+  /// reduced basis takes for a rope with a rigging (InvariantRopeBasis).
+  AncfRope lumpedAtHook() const;
   /// The hook block's node: the hoist rope's last (the chain's end without a rigging).
   int hookNode() const { return elements_; }
   /// Points of the chain (sampleRopeCurve, then the rigging bar's straight line).
-  std::vector<Eigen::Vector3d> sampleCurve(const Eigen::VectorXd& q, int per_element) const;
+  /// element_length > 0: the hoist rope's elements at that length instead of their own (a
+  /// reduced run that hoisted without updating this rope).
+  std::vector<Eigen::Vector3d> sampleCurve(const Eigen::VectorXd& q, int per_element,
+                                           double element_length = 0.0) const;
   double endMass() const { return end_mass_; }
   double topMass() const { return top_mass_; }
   const Eigen::Vector3d& gravity() const { return gravity_; }
@@ -115,8 +122,8 @@ class AncfRope {
   static Eigen::Vector3d nodePosition(const Eigen::VectorXd& q, int node) {
     return q.segment<3>(6 * node);
   }
-  /// Smallest nodal axial strain (a chain without a rigging) min_j |r_j,x| - 1 (the slack checks of
-  /// the reduced models).
+  /// Smallest nodal axial strain min_j |r_j,x| - 1 over the hoist rope's nodes (a rigging's
+  /// payload point, after them, has no slope): the slack checks of the reduced models.
   static double minNodalStrain(const Eigen::VectorXd& q);
   /// Kinetic energy of the velocities v relative to the top node's, 1/2 w^T M w with
   /// w_j = v_j - v_0 on every node position [J] (what a projection may drop).

@@ -69,6 +69,11 @@ class HandOverSimulation : public Simulation {
   const CraneDrives& drives() const override { return full_.drives(); }
   const RopeSupport& support() const override { return full_.support(); }
   std::vector<Eigen::Vector3d> ropeCurve(int per_element) const override;
+  int hookNode() const override { return full_.hookNode(); }
+  /// The full model's (a rigging's payload point is a position without a slope).
+  std::vector<bool> fullStatePositionBlocks() const override {
+    return full_.fullStatePositionBlocks();
+  }
   RunStatistics statistics() const override;
   /// Hand-overs to full order so far, the steps integrated at full order, and whether the
   /// current step runs at full order.

@@ -34,6 +34,15 @@
 // Gauss points (ancfCablePointDiscreteGradient) plus the damper at the midpoint, so the elastic
 // forces' work equals U(B y1) - U(B y0) and a slack/taut switch creates no energy.
 // Generalized-alpha resumes once a step no longer switches.
+//
+// With a rigging (AncfRope::setRigging, docs/model.md "Hook block"), y = [a; r_p]: the payload
+// point r_p in its own 3 coordinates beside the basis, hung from the hook node r_n = psi(1) a by
+// the tension-only bar. With T = [psi(1) (x) I3, 0; 0, I3] mapping y to the bar's [r_n; r_p],
+// the bar adds T^T M_b T to the mass (its consistent mass and the payload), T^T Q_b to the
+// force, T^T K_b T to the iteration matrix and its discrete gradient to the energy-consistent
+// step, exactly as at full order; the hook block is the point mass at r_n, and the ground and
+// the end force act on r_p. The basis is that of the rope with the rigging's masses lumped at
+// its end (AncfRope::lumpedAtHook).
 #pragma once
 
 #include <array>
@@ -77,7 +86,8 @@ class InvariantReducedSolver {
   /// tangent psi(1) psi(1)^T (x) df/dr; a step that lands or lifts off is energy-consistent.
   void setGround(std::optional<GroundContact> ground) { ground_ = std::move(ground); }
   const std::optional<GroundContact>& ground() const { return ground_; }
-  /// The end point r_e (or its velocity, for y') of a reduced vector.
+  /// The end point r_e (or its velocity, for y') of a reduced vector: the payload's, the hoist
+  /// rope's end node or a rigging's payload point.
   Eigen::Vector3d endPoint(const Eigen::VectorXd& y) const;
   /// Re-read the rope's length after AncfRope::setLength (hoisting: y is kept, docs/model.md).
   void refreshLength() { setLength(rope_.length()); }
@@ -134,9 +144,13 @@ class InvariantReducedSolver {
   Eigen::VectorXd appliedForce() const;
   Eigen::VectorXd massTimes(const Eigen::VectorXd& x) const;
   const Eigen::VectorXd& gravityForce() const { return gravity_; }
+  /// Node j's position: the hoist rope's (j <= elements) from the basis, a rigging's payload
+  /// point (j = elements + 1) its own coordinates.
   Eigen::Vector3d nodePosition(const Eigen::VectorXd& y, int j) const {
-    return basis_.nodePosition(y, j);
+    return j <= rope_.elements() ? basis_.nodePosition(y, j) : Eigen::Vector3d(y.tail<3>());
   }
+  /// Reduced coordinates: 3 m, and 3 more for a rigging's payload point.
+  int coordinates() const { return n_; }
   /// Iteration matrices factorised, and the Newton iterations and steps taken so far.
   int factorizations() const { return factorizations_; }
   long newtonIterations() const { return newton_iterations_; }
@@ -160,6 +174,15 @@ class InvariantReducedSolver {
   bool factorize(double a, double c, double k, const Eigen::Matrix3d& G, const Eigen::VectorXd& y,
                  const Eigen::VectorXd* y0 = nullptr);
   Eigen::Vector3d chord(const Eigen::VectorXd& y) const;
+  // The hoist rope's end node r_n = psi(1) a, the point mass there, the rigging bar's
+  // coordinates [r_n; r_p], and T^T Qb added into Q (header: the rigging).
+  Eigen::Vector3d hookPoint(const Eigen::VectorXd& y) const;
+  double hookPointMass() const;
+  Vector6 barCoordinates(const Eigen::VectorXd& y) const;
+  void addBarForce(const Vector6& Qb, Eigen::VectorXd& Q) const;
+  double barSwitchWorkError(const Vector6& b0, const Vector6& b1) const;
+  // The bar went slack or taut, or turned, since the last factorisation.
+  bool barChanged(const Eigen::VectorXd& y) const;
   // -psi(1) (x) f: the ground's generalized force as an internal force (0 without ground).
   Eigen::VectorXd contactForce(const Eigen::Vector3d& f) const;
   // The ground's force at the state x (or the energy-consistent step's mean from ec_start_).
@@ -175,7 +198,12 @@ class InvariantReducedSolver {
   NewtonSettings newton_;
   double damping_ = 0.0;
   long halved_steps_ = 0;
-  int m_ = 0;                 ///< shapes
+  int m_ = 0;            ///< shapes
+  int n_ = 0;            ///< reduced rope coordinates: 3 m (+ 3 for a rigging's payload)
+  bool rigged_ = false;  ///< a rigging bar hangs the payload point from the hook node
+  Matrix6 bar_mass_ = Matrix6::Zero();  ///< the bar's consistent mass with the payload
+  bool fact_bar_taut_ = false;
+  Eigen::Vector3d fact_bar_dir_ = Eigen::Vector3d::Zero();
   Eigen::MatrixXd D1_, D2_;   ///< m x n_g shape xi-derivatives at the Gauss points
   Eigen::VectorXd w_;         ///< n_g weights in xi
   Eigen::MatrixXd Kb_;        ///< sum w D2 D2^T (m x m)
