@@ -54,10 +54,19 @@ InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model)
   solver_->setGround(groundContactOf(full_.model()));
 }
 
-bool InvariantReducedSimulation::startReduced(const CoupledState&) {
+bool InvariantReducedSimulation::startReduced(const CoupledState& f) {
   max_indicator_ = 0.0;
   indicator_due_ = false;
   solver_->resetSwitching();
+  // A velocity given to the payload alone starts at full order, as for a lumped load (whose
+  // basis refuses it): on a rigging the payload point carries it exactly, but its bar then loads
+  // or unloads the rope at once (a load thrown up from a taut rigging recoils the rope).
+  const AncfRope& rope = full_.rope();
+  if (rope.hasRigging() &&
+      (rope.position(f.v, rope.nodes() - 1) - rope.position(f.v, rope.hookNode())).norm() >
+          kStartVelocityTolerance) {
+    return false;
+  }
   return tryHandBack();
 }
 
@@ -109,7 +118,17 @@ double InvariantReducedSimulation::swingEnergy(const CoupledState& f) const {
 }
 
 bool InvariantReducedSimulation::slackened() const {
-  return solver_->slackLength(state_.q) > kSlackLength;
+  return solver_->slackLength(state_.q) > kSlackLength || riggingSlackInTheAir();
+}
+
+bool InvariantReducedSimulation::riggingSlackInTheAir() const {
+  // A rigging's bar slack in the air has dropped the rope's end load by the payload's at once
+  // (a load thrown up or bouncing on it): the rope recoils in an axial wave the basis does not
+  // hold. Its slack length counts as the rope's; a landed load's bar, slack under a resting or
+  // rising hook, does not (a set-down hands over at its touchdown).
+  if (solver_->barSlackLength(state_.q) <= kSlackLength) return false;
+  return !solver_->ground() ||
+         solver_->ground()->clearance(solver_->endPoint(state_.q)) >= kGroundMargin;
 }
 
 double InvariantReducedSimulation::errorIndicator(const CoupledState& f) const {

@@ -78,7 +78,8 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   /// The hand-over's thresholds for this rope (HandOverSettings): taut again where no node's
   /// strain and not the top tension is below zero; hand-back trials after a 1 s dwell (the
   /// waves of a slack episode ring for about a second on a 60 m rope), every 20 steps, doubling
-  /// up to 640. Slack is the slack length's test (slackened), not the settings' fractions.
+  /// up to 640. Slack is the slack length's test (slackened: the rope's, and a rigging's in the
+  /// air), not the settings' fractions.
   static HandOverSettings handOverSettingsFor();
   /// Slack length [m] above which the rope counts as slack. Measured on the stress-free
   /// release (rope_pendulum_chrono: 60 m, 3.6 t), whose rope touches zero tension at the top of
@@ -111,6 +112,9 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   /// Simulated time a hand-over stays at full order before the first hand-back trial [s]: the
   /// waves of a snatch or a slack episode ring for about a second on a 60 m rope.
   static constexpr double kHandBackDwell = 1.0;
+  /// A rigging's payload moving against the hook at the start [m/s] (startReduced): a velocity
+  /// given to the payload alone; an equilibrium start's is 0 to round-off.
+  static constexpr double kStartVelocityTolerance = 1e-9;
 
  protected:
   bool startReduced(const CoupledState& full) override;
@@ -134,6 +138,7 @@ class InvariantReducedSimulation final : public HandOverSimulation,
 
  private:
   void syncFullRope();
+  bool riggingSlackInTheAir() const;
   // Potential energy of the swing of a full-coordinate state above the hanging rope [J].
   double swingEnergy(const CoupledState& full) const;
 

@@ -45,6 +45,7 @@
 // its end (AncfRope::lumpedAtHook).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <functional>
 #include <optional>
@@ -151,6 +152,17 @@ class InvariantReducedSolver {
   }
   /// Reduced coordinates: 3 m, and 3 more for a rigging's payload point.
   int coordinates() const { return n_; }
+  /// A rigging's bar carries tension at y (false without a rigging).
+  bool barTaut(const Eigen::VectorXd& y) const {
+    return rigged_ && rope_.rigging().tension(barCoordinates(y)) > 0.0;
+  }
+  /// A rigging's slack length at y: its unstretched length less the hook-payload distance, 0
+  /// where taut or without a rigging [m].
+  double barSlackLength(const Eigen::VectorXd& y) const {
+    if (!rigged_) return 0.0;
+    const Vector6 b = barCoordinates(y);
+    return std::max(0.0, rope_.rigging().length() - (b.tail<3>() - b.head<3>()).norm());
+  }
   /// Iteration matrices factorised, and the Newton iterations and steps taken so far.
   int factorizations() const { return factorizations_; }
   long newtonIterations() const { return newton_iterations_; }
