@@ -301,11 +301,11 @@ TEST(PendulumRope, MakeSimulationBuildsNoAncfRope) {
   EXPECT_EQ(sim->ropeNodes(), 2);
 }
 
-TEST(ResampleRope, InterpolatesAlongTheMaterialCoordinate) {
+TEST(ResampleRope, InterpolatesAlongTheArcLength) {
   // A 2-node chord against a 5-node straight rope on the same line: no RMS error; shifted by
   // the chord's end moved 0.1 m sideways: the RMS of a linear ramp 0, 0.025, ..., 0.1.
   const std::vector<Eigen::Vector3d> chord = {{0, 0, 0}, {0, 0, -60}};
-  const auto fine = resampleRope(chord, 5);
+  const auto fine = resampleRopeAt(chord, {0.0, 0.25, 0.5, 0.75, 1.0});
   ASSERT_EQ(fine.size(), 5u);
   for (int j = 0; j < 5; ++j) EXPECT_LT((fine[j] - Eigen::Vector3d(0, 0, -15.0 * j)).norm(), 1e-12);
   Trajectory a, b;
@@ -317,7 +317,17 @@ TEST(ResampleRope, InterpolatesAlongTheMaterialCoordinate) {
   const ErrorMetrics m = compareTrajectories(a, b);
   const double expected = std::sqrt((0.025 * 0.025 + 0.05 * 0.05 + 0.075 * 0.075 + 0.01) / 5);
   EXPECT_NEAR(m.rope_rms_max, expected, 1e-12);
-  EXPECT_THROW(resampleRope({{0, 0, 0}}, 5), InputError);
+  EXPECT_THROW(resampleRopeAt({{0, 0, 0}}, {0.0, 1.0}), InputError);
+  // A rigging: the pendulum's top, hook and payload (20 m of rope, 5 m of rigging) against 20
+  // rope elements and the payload, the same straight chain: no error (interpolated by node
+  // index instead, the RMS read 6.07 m).
+  std::vector<Eigen::Vector3d> chain;
+  for (int j = 0; j <= 20; ++j) chain.emplace_back(0, 0, -1.0 * j);
+  chain.emplace_back(0, 0, -25.0);
+  a.nodes = {{{0, 0, 0}, {0, 0, -20}, {0, 0, -25}}};
+  b.nodes = {chain};
+  EXPECT_LT(compareTrajectories(a, b).rope_rms_max, 1e-12);
+  EXPECT_LT(compareTrajectories(b, a).rope_rms_max, 1e-12);
 }
 
 TEST(PendulumCrane, TheAncfSimulationRefusesAPendulumSceneByKey) {

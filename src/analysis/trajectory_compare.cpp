@@ -1,5 +1,6 @@
 #include "crane_twin/analysis/trajectory_compare.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -44,19 +45,33 @@ Trajectory readTrajectory(const std::string& series_csv, const std::string& node
   return tr;
 }
 
-std::vector<Eigen::Vector3d> resampleRope(const std::vector<Eigen::Vector3d>& nodes,
-                                          std::size_t n) {
-  if (nodes.size() < 2 || n < 2) {
-    throw InputError("a rope needs at least 2 nodes to compare, got " +
-                     std::to_string(nodes.size()) + " and " + std::to_string(n));
+std::vector<double> arcFractions(const std::vector<Eigen::Vector3d>& nodes) {
+  std::vector<double> s(nodes.size(), 0.0);
+  for (std::size_t k = 1; k < nodes.size(); ++k) s[k] = s[k - 1] + (nodes[k] - nodes[k - 1]).norm();
+  const double total = s.empty() ? 0.0 : s.back();
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    s[k] = total > 0.0 ? s[k] / total
+                       : static_cast<double>(k) /
+                             static_cast<double>(std::max<std::size_t>(1, s.size() - 1));
   }
-  std::vector<Eigen::Vector3d> out(n);
-  const double last = static_cast<double>(nodes.size() - 1);
-  for (std::size_t j = 0; j < n; ++j) {
-    const double x = last * static_cast<double>(j) / static_cast<double>(n - 1);  // coarse index
-    const std::size_t k = std::min(static_cast<std::size_t>(x), nodes.size() - 2);
-    const double w = x - static_cast<double>(k);
-    out[j] = (1.0 - w) * nodes[k] + w * nodes[k + 1];
+  return s;
+}
+
+std::vector<Eigen::Vector3d> resampleRopeAt(const std::vector<Eigen::Vector3d>& nodes,
+                                            const std::vector<double>& fractions) {
+  if (nodes.size() < 2) {
+    throw InputError("a rope needs at least 2 nodes to compare, got " +
+                     std::to_string(nodes.size()));
+  }
+  const std::vector<double> s = arcFractions(nodes);
+  std::vector<Eigen::Vector3d> out;
+  out.reserve(fractions.size());
+  std::size_t k = 0;
+  for (double f : fractions) {
+    while (k + 2 < nodes.size() && s[k + 1] < f) ++k;
+    const double span = s[k + 1] - s[k];
+    const double w = span > 0.0 ? std::clamp((f - s[k]) / span, 0.0, 1.0) : 0.0;
+    out.push_back((1.0 - w) * nodes[k] + w * nodes[k + 1]);
   }
   return out;
 }
@@ -81,9 +96,15 @@ ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b) {
       tension_scale = std::max(tension_scale, std::abs(b.tension[j]));
     }
     if (withNodes) {
-      const std::size_t n = std::max(a.nodes[i].size(), b.nodes[j].size());
-      const auto ra = a.nodes[i].size() == n ? a.nodes[i] : resampleRope(a.nodes[i], n);
-      const auto rb = b.nodes[j].size() == n ? b.nodes[j] : resampleRope(b.nodes[j], n);
+      // The coarser chain at the finer one's arc-length fractions (header).
+      const bool a_finer = a.nodes[i].size() >= b.nodes[j].size();
+      const std::vector<Eigen::Vector3d>& fine = a_finer ? a.nodes[i] : b.nodes[j];
+      const std::vector<Eigen::Vector3d>& coarse = a_finer ? b.nodes[j] : a.nodes[i];
+      const std::size_t n = fine.size();
+      const std::vector<Eigen::Vector3d> rc =
+          coarse.size() == n ? coarse : resampleRopeAt(coarse, arcFractions(fine));
+      const auto& ra = a_finer ? fine : rc;
+      const auto& rb = a_finer ? rc : fine;
       double s = 0.0;
       for (std::size_t k = 0; k < n; ++k) s += (ra[k] - rb[k]).squaredNorm();
       m.rope_rms_max = std::max(m.rope_rms_max, std::sqrt(s / n));

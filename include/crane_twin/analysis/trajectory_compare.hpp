@@ -31,16 +31,21 @@ struct ErrorMetrics {
 };
 
 /// Metrics at the times both trajectories share (matched to 1e-9 s). Throws InputError when
-/// they share none. Ropes of different meshes (a pendulum's 2 nodes against an ANCF rope's n,
-/// or two element counts): both meshes are uniform in the unstretched arc length, so the
-/// coarser rope is interpolated linearly between its nodes at the finer one's material points
-/// s_j = j / (n - 1) and the RMS runs over the finer rope's n nodes. Exact for the pendulum
-/// (a straight bar); for a coarse ANCF rope it leaves out the curvature between its nodes.
+/// they share none. Chains of different meshes (a pendulum's 2 or 3 points against an ANCF
+/// rope's nodes, two element counts, a rigging's bar after the rope): the coarser chain is
+/// interpolated linearly at the finer one's arc-length fractions s_j / s_n (the polygon through
+/// its nodes; for a uniform rope the material points j / (n - 1) to its strain's variation), so
+/// a rigging's hook and payload meet the other model's; the RMS runs over the finer chain's n
+/// nodes. Exact for the pendulum (straight bars); for a coarse ANCF rope it leaves out the
+/// curvature between its nodes.
 ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b);
 
-/// The rope `nodes` (uniform in material coordinate) interpolated linearly at n uniform
-/// material points. Throws InputError for fewer than 2 nodes or n < 2.
-std::vector<Eigen::Vector3d> resampleRope(const std::vector<Eigen::Vector3d>& nodes, std::size_t n);
+/// Cumulative arc length of the polygon through `nodes` over its total, per node (0 ... 1).
+std::vector<double> arcFractions(const std::vector<Eigen::Vector3d>& nodes);
+/// The polygon through `nodes` interpolated linearly at arc-length fractions (arcFractions).
+/// Throws InputError for fewer than 2 nodes.
+std::vector<Eigen::Vector3d> resampleRopeAt(const std::vector<Eigen::Vector3d>& nodes,
+                                            const std::vector<double>& fractions);
 
 /// Read a docs/cli.md time-series CSV (and optionally its nodes CSV). Throws InputError naming the
 /// file, line and column for a missing column, a malformed number or a ragged row.
