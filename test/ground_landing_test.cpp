@@ -507,15 +507,19 @@ TEST(GroundLanding, UnseenLoadsLiftAndSetDownWithoutFailureOrEnergyCreated) {
                            "structure: {model: modal, modes: 20}\n"
                            "rope: {elements: 30, length: 60.0}\n"
                            "initial: {mode: landed}\n";
-  for (int draw = 0; draw < 3; ++draw) {
+  for (int draw = 0; draw < 4; ++draw) {
     // Within the load chart (rated moment 410 t m): the radius drawn up to where the mass may go.
-    // One draw from each third of the masses: a light, a middle and a heavy load.
-    const double mass = 500.0 + 4000.0 * (draw + unit(rng));
+    // One draw from each third of the masses: a light, a middle and a heavy load; a fourth of
+    // any mass on a rigging of 2 to 6 m under the hook block.
+    const bool rigged = draw == 3;
+    const double mass = 500.0 + 4000.0 * (rigged ? 3.0 * unit(rng) : draw + unit(rng));
+    const double rigging = rigged ? 2.0 + 4.0 * unit(rng) : 0.0;
     const double radius = 15.0 + (std::min(50.0, 410000.0 / mass) - 15.0) * unit(rng);
     const double height = 3.0 + 7.0 * unit(rng), friction = unit(rng), v = 0.3 + 0.7 * unit(rng);
     std::ostringstream text;
     text << base << "payload: {mass: " << mass << "}\ntrolley: {radius: " << radius
-         << "}\nground: {height: " << height << ", friction: " << friction << "}\n";
+         << "}\nground: {height: " << height << ", friction: " << friction
+         << "}\nhook: {rigging_length: " << rigging << "}\n";
     const std::string scene = writeScene("unseen_" + std::to_string(draw), text.str());
     // Reel in the 0.1 m lying on the load and 1.5 m more (the rope's stretch and the jib's sag
     // under a rated load take up to about a metre of it before the load leaves the ground);
@@ -539,7 +543,8 @@ TEST(GroundLanding, UnseenLoadsLiftAndSetDownWithoutFailureOrEnergyCreated) {
       std::unique_ptr<Simulation> landed = makeSimulation(probe);
       landed->initialize();
       const double top = landed->series().trolley.z();
-      const double reach = top - (probe.scene.ground->height + probe.scene.payload_height);
+      const double reach =
+          top - (probe.scene.ground->height + probe.scene.payload_height) - rigging;
       sets.push_back("rope.length=" + std::to_string(reach + 0.1));
       const CraneModel m = buildCraneModel(loadScene(scene, sets));
       std::unique_ptr<Simulation> sim = makeSimulation(m);
@@ -572,10 +577,10 @@ TEST(GroundLanding, UnseenLoadsLiftAndSetDownWithoutFailureOrEnergyCreated) {
       }
       const SeriesValues end = sim->series();
       std::printf(
-          "draw %d (%.0f kg, r %.1f m, ground %.2f m, mu %.2f, v %.2f m/s) %s: lifts %d, "
-          "phi_2 %.3f, penetration %.2e m, energy rise at rest %.2e J, landed %d, payload %.2e "
-          "m from full order, full-order steps %ld\n",
-          draw, mass, radius, height, friction, v, model.c_str(), monitor.liftOffs(),
+          "draw %d (%.0f kg, r %.1f m, ground %.2f m, mu %.2f, v %.2f m/s, rigging %.2f m) %s: "
+          "lifts %d, phi_2 %.3f, penetration %.2e m, energy rise at rest %.2e J, landed %d, "
+          "payload %.2e m from full order, full-order steps %ld\n",
+          draw, mass, radius, height, friction, v, rigging, model.c_str(), monitor.liftOffs(),
           monitor.factor(), penetration, e_max_after - e_quiet, end.payload_landed ? 1 : 0, worst,
           sim->statistics().full_order_steps);
       EXPECT_EQ(monitor.liftOffs(), 1) << model << " draw " << draw;
