@@ -107,14 +107,16 @@ void InvariantReducedSimulation::setMotion(const CoupledState& m) {
 }
 
 double InvariantReducedSimulation::swingEnergy(const CoupledState& f) const {
-  // (m_end + mu L / 2) |g| l (1 - cos theta): the end mass and half the rope lifted by the chord's
-  // angle theta from the hanging direction (l the chord's length).
+  // (m_end + mu L / 2) |g| l (1 - cos theta): the end mass (with a rigging's hook block) and half
+  // the rope lifted by the chord's angle theta from the hanging direction (l the chord's length,
+  // to the payload).
   const Eigen::Vector3d g = full_.rope().gravity();
   const Eigen::Vector3d c = full_.rope().position(f.q, full_.ropeNodes() - 1) - f.q.head<3>();
   const double l = c.norm(), gn = g.norm();
   if (!(l > 0.0) || !(gn > 0.0)) return 0.0;
   const CraneModel& m = full_.model();
-  return (m.end_mass + 0.5 * m.rope.mass_per_length * ropeLength()) * gn * (l - c.dot(g) / gn);
+  const double end = m.end_mass + (m.scene.hasRigging() ? m.hook_mass : 0.0);
+  return (end + 0.5 * m.rope.mass_per_length * ropeLength()) * gn * (l - c.dot(g) / gn);
 }
 
 bool InvariantReducedSimulation::slackened() const {

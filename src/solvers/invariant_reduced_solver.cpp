@@ -136,7 +136,8 @@ void InvariantReducedSolver::addBarForce(const Vector6& Qb, Eigen::VectorXd& Q) 
 }
 
 // F_r = B^T F = gravity_ + sum_k [L int psi_k dxi f + psi_k(1) F_end] (x) e_k: the rope's external
-// load per length f and end force F_end (AncfRope::setExternalLoad), int psi_k = mass_hat(k, 0).
+// load per length f and end force F_end (AncfRope::setExternalLoad), int psi_k = mass_hat(k, 0);
+// with a rigging F_end acts on the payload point's rows instead (as at full order).
 Eigen::VectorXd InvariantReducedSolver::appliedForce() const {
   const Eigen::Vector3d& f = rope_.externalPerLength();
   const Eigen::Vector3d& fe = rope_.externalEndForce();
