@@ -21,6 +21,7 @@
 #include "crane_twin/simulation/lift_off_monitor.hpp"
 #include "crane_twin/simulation/simulation.hpp"
 #include "crane_twin/simulation/supported_rope_simulation.hpp"
+#include "crane_twin/structure/structure_support.hpp"
 
 using namespace crane_twin;
 
@@ -58,6 +59,54 @@ double topHeight(const std::string& scene, const std::vector<std::string>& sets)
   std::unique_ptr<Simulation> sim = makeSimulation(buildCraneModel(loadScene(scene, s)));
   sim->initialize();
   return sim->series().trolley.z();
+}
+
+// An independent linear model of a lift-off from a flexible structure: a massless rope spring k
+// from the trolley to the load m, the trolley's vertical motion u = sum_i phi_i q_i from the
+// structure's modes (unit modal mass, omega_i, damping terms 2 zeta omega_i, phi_i the mode's
+// vertical displacement at the trolley),
+//   q_i'' + 2 zeta omega_i q_i' + omega_i^2 q_i = -phi_i T,   T = max(0, k (v t - y + u)),
+//   m y'' = T - m g once T reaches m g (y = 0 before),
+// the hoist at speed v from the moment the rope is taut (t = 0, the structure at rest), by RK4 at
+// 10 us (a step far under every kept period). Returns the peak T in `window` s after the lift-off.
+double linearLiftOffPeak(const ModalStructureSupport& s, double k, double m, double g, double v,
+                         double window) {
+  const int n = s.size();
+  Eigen::VectorXd phi(n);
+  for (int i = 0; i < n; ++i) phi(i) = s.pointMotion(Eigen::VectorXd::Unit(n, i)).z();
+  const Eigen::VectorXd& w2 = s.omega2();
+  const Eigen::VectorXd& c = s.dampingTerms();
+  // x = [q; q'; y; y'].
+  bool lifted = false;
+  const auto tension = [&](double t, const Eigen::VectorXd& x) {
+    return std::max(0.0, k * (v * t - x(2 * n) + phi.dot(x.head(n))));
+  };
+  const auto rate = [&](double t, const Eigen::VectorXd& x) {
+    Eigen::VectorXd d(2 * n + 2);
+    const double T = tension(t, x);
+    d.head(n) = x.segment(n, n);
+    d.segment(n, n) = -c.cwiseProduct(x.segment(n, n)) - w2.cwiseProduct(x.head(n)) - phi * T;
+    d(2 * n) = lifted ? x(2 * n + 1) : 0.0;
+    d(2 * n + 1) = lifted ? T / m - g : 0.0;
+    return d;
+  };
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(2 * n + 2);
+  const double h = 1e-5;
+  double t = 0.0, t_lift = -1.0, peak = 0.0;
+  while (t_lift < 0.0 || t < t_lift + window) {
+    const Eigen::VectorXd k1 = rate(t, x), k2 = rate(t + h / 2, x + h / 2 * k1),
+                          k3 = rate(t + h / 2, x + h / 2 * k2), k4 = rate(t + h, x + h * k3);
+    x += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    t += h;
+    const double T = tension(t, x);
+    if (!lifted && T >= m * g) {
+      lifted = true;
+      t_lift = t;
+    }
+    if (lifted) peak = std::max(peak, T);
+    if (t > 100.0) break;  // never lifted: the caller's assertion reports it
+  }
+  return peak;
 }
 
 struct LandingRun {
@@ -168,7 +217,11 @@ initial: {mode: landed}
 // not faster than the lift-off's 0.96 Hz, so it holds where the tension builds slowly: within 5 %
 // at 0.1 m/s (2.7 s from slack to lift-off); at 0.2 and 0.5 m/s the structure's own swing under
 // the tension ramp moves phi_2 by -6 and +12 % (printed, docs/model.md "Ground contact").
-TEST(GroundLanding, T8036LiftOffFactorIsTheSeriesStiffnessClosedForm) {
+// On the T8036 the series closed form (the structure's static compliance at the trolley in series
+// with the rope) holds where the tension builds slowly against the structure's lowest modes; at
+// 0.2 and 0.5 m/s the structure swings under the ramp (-6 and +12 % from it). The linear model
+// with the structure's 100 modes (linearLiftOffPeak) gives the simulated factor at every speed.
+TEST(GroundLanding, T8036LiftOffFactorIsTheSeriesStiffnessFormWithTheStructuresInertia) {
   const std::string crane = fastHoistCrane();
   const std::string scene = writeScene("lift_off_t8036", "crane: " + crane + R"(
 duration: 6.0
@@ -198,14 +251,24 @@ initial: {mode: landed}
       const double L = r.lift_length;
       const double k = 1.0 / (L / m.rope.axialStiffnessAt(L) + cs);
       const double expected = 1.0 + v * std::sqrt(k / m.hangingPointMass()) / m.scene.gravity;
+      // The linear model with the structure's 100 modes (its inertia, which the series closed
+      // form leaves out); the rope's weight W_r static at the top.
+      const double g = m.scene.gravity, W_r = m.rope.mass_per_length * L * g;
+      const double peak =
+          linearLiftOffPeak(dynamic_cast<const ModalStructureSupport&>(*support),
+                            m.rope.axialStiffnessAt(L) / L, m.hangingPointMass(), g, v, 3.0);
+      const double linear = (peak + W_r) / (m.hangingPointMass() * g + W_r);
       std::printf(
           "T8036 %s, v_h %.1f m/s: structure %.3g m/N, rope %.3g m/N: phi_2 %.4f, "
-          "closed form %.4f (%+.2f %%)\n",
+          "closed form %.4f (%+.2f %%), linear model with the structure's modes %.4f "
+          "(%+.2f %%)\n",
           model.c_str(), v, cs, L / m.rope.axialStiffnessAt(L), r.monitor.factor(), expected,
-          100.0 * (r.monitor.factor() / expected - 1.0));
+          100.0 * (r.monitor.factor() / expected - 1.0), linear,
+          100.0 * (r.monitor.factor() / linear - 1.0));
       if (v == 0.1) {
         EXPECT_NEAR(r.monitor.factor(), expected, 0.05 * expected) << model << " v " << v;
       }
+      EXPECT_NEAR(r.monitor.factor(), linear, 0.02 * linear) << model << " v " << v;
     }
   }
 }
