@@ -152,10 +152,6 @@ class InvariantReducedSolver {
   }
   /// Reduced coordinates: 3 m, and 3 more for a rigging's payload point.
   int coordinates() const { return n_; }
-  /// A rigging's bar carries tension at y (false without a rigging).
-  bool barTaut(const Eigen::VectorXd& y) const {
-    return rigged_ && rope_.rigging().tension(barCoordinates(y)) > 0.0;
-  }
   /// A rigging's slack length at y: its unstretched length less the hook-payload distance, 0
   /// where taut or without a rigging [m].
   double barSlackLength(const Eigen::VectorXd& y) const {
