@@ -97,14 +97,11 @@ ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b) {
     }
     if (withNodes) {
       // The coarser chain at the finer one's arc-length fractions (header).
-      const bool a_finer = a.nodes[i].size() >= b.nodes[j].size();
-      const std::vector<Eigen::Vector3d>& fine = a_finer ? a.nodes[i] : b.nodes[j];
-      const std::vector<Eigen::Vector3d>& coarse = a_finer ? b.nodes[j] : a.nodes[i];
-      const std::size_t n = fine.size();
-      const std::vector<Eigen::Vector3d> rc =
-          coarse.size() == n ? coarse : resampleRopeAt(coarse, arcFractions(fine));
-      const auto& ra = a_finer ? fine : rc;
-      const auto& rb = a_finer ? rc : fine;
+      const auto& na = a.nodes[i];
+      const auto& nb = b.nodes[j];
+      const auto ra = na.size() < nb.size() ? resampleRopeAt(na, arcFractions(nb)) : na;
+      const auto rb = nb.size() < na.size() ? resampleRopeAt(nb, arcFractions(na)) : nb;
+      const std::size_t n = ra.size();
       double s = 0.0;
       for (std::size_t k = 0; k < n; ++k) s += (ra[k] - rb[k]).squaredNorm();
       m.rope_rms_max = std::max(m.rope_rms_max, std::sqrt(s / n));

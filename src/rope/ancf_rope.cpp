@@ -205,19 +205,11 @@ double AncfRope::slackSwitchWorkError(const Eigen::VectorXd& q0, const Eigen::Ve
     err += ancfSlackSwitchWorkError(element_, q0.segment<12>(6 * k), q1.segment<12>(6 * k));
   }
   if (hasRigging()) {
-    // The bar's tension is linear in its length while taut: the trapezoid in the length misses
-    // only where it switches, |(T0 + T1) / 2 (l1 - l0) - (U1 - U0)|.
     const int n = 6 * elements_;
     Vector6 b0, b1;
     b0 << q0.segment<3>(n), q0.tail<3>();
     b1 << q1.segment<3>(n), q1.tail<3>();
-    const double T0 = rigging_->tension(b0), T1 = rigging_->tension(b1);
-    if (!(T0 > 0.0 && T1 > 0.0)) {
-      const double l0 = (b0.tail<3>() - b0.head<3>()).norm(),
-                   l1 = (b1.tail<3>() - b1.head<3>()).norm();
-      err += std::abs(0.5 * (T0 + T1) * (l1 - l0) -
-                      (rigging_->elasticEnergy(b1) - rigging_->elasticEnergy(b0)));
-    }
+    err += rigging_->slackSwitchWorkError(b0, b1);
   }
   return err;
 }

@@ -143,6 +143,13 @@ void PendulumRope::dampingForce(double c, const Vector6& q, const Vector6& v, Ve
   C->bottomLeftCorner<3, 3>() = -Cb;
 }
 
+double PendulumRope::slackSwitchWorkError(const Vector6& q0, const Vector6& q1) const {
+  const double T0 = tension(q0), T1 = tension(q1);
+  if (T0 > 0.0 && T1 > 0.0) return 0.0;
+  const double l0 = (q0.tail<3>() - q0.head<3>()).norm(), l1 = (q1.tail<3>() - q1.head<3>()).norm();
+  return std::abs(0.5 * (T0 + T1) * (l1 - l0) - (elasticEnergy(q1) - elasticEnergy(q0)));
+}
+
 double PendulumRope::elasticEnergy(const Vector6& q) const {
   const double l = (q.tail<3>() - q.head<3>()).norm();
   return slack(l) ? 0.0 : 0.5 * EA_ / L_ * (l - L_) * (l - L_);

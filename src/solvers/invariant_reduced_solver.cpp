@@ -611,7 +611,8 @@ Eigen::VectorXd InvariantReducedSolver::dampingForce(const Eigen::VectorXd& y,
 
 double InvariantReducedSolver::slackSwitchWorkError(const Eigen::VectorXd& y0,
                                                     const Eigen::VectorXd& y1) const {
-  double err = rigged_ ? barSwitchWorkError(barCoordinates(y0), barCoordinates(y1)) : 0.0;
+  double err =
+      rigged_ ? rope_.rigging().slackSwitchWorkError(barCoordinates(y0), barCoordinates(y1)) : 0.0;
   // Both ends in the linear range: the trapezoid is exact (ancfAxialSwitchWorkError).
   if (minStretchLowerBound(y0) - 1.0 >= kSlackBand && minStretchLowerBound(y1) - 1.0 >= kSlackBand)
     return err;
@@ -621,16 +622,6 @@ double InvariantReducedSolver::slackSwitchWorkError(const Eigen::VectorXd& y0,
   for (int g = 0; g < w_.size(); ++g)
     err += w_(g) * L_ * ancfAxialSwitchWorkError(EA, g0(g) - 1.0, g1(g) - 1.0);
   return err;
-}
-
-// The bar's tension is linear in its length while taut: the trapezoid in the length misses only
-// where it switches, |(T0 + T1) / 2 (l1 - l0) - (U1 - U0)| (AncfRope::slackSwitchWorkError).
-double InvariantReducedSolver::barSwitchWorkError(const Vector6& b0, const Vector6& b1) const {
-  const PendulumRope& bar = rope_.rigging();
-  const double T0 = bar.tension(b0), T1 = bar.tension(b1);
-  if (T0 > 0.0 && T1 > 0.0) return 0.0;
-  const double l0 = (b0.tail<3>() - b0.head<3>()).norm(), l1 = (b1.tail<3>() - b1.head<3>()).norm();
-  return std::abs(0.5 * (T0 + T1) * (l1 - l0) - (bar.elasticEnergy(b1) - bar.elasticEnergy(b0)));
 }
 
 bool InvariantReducedSolver::barChanged(const Eigen::VectorXd& y) const {

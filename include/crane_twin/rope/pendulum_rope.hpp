@@ -75,6 +75,10 @@ class PendulumRope {
   void dampingForce(double c, const Vector6& q, const Vector6& v, Vector6& Q,
                     Matrix6* C = nullptr) const;
   double elasticEnergy(const Vector6& q) const;
+  /// The trapezoid's work error over a step q0 -> q1 where the bar is not taut at both ends,
+  /// |(T0 + T1) / 2 (l1 - l0) - (U1 - U0)| [J] (its tension is linear in its length while taut,
+  /// so the trapezoid misses only where it switches); 0 where taut at both.
+  double slackSwitchWorkError(const Vector6& q0, const Vector6& q1) const;
   /// The straight rope from `top` along the unit vector d with length l [m].
   static Vector6 straight(const Eigen::Vector3d& top, const Eigen::Vector3d& d, double l);
 

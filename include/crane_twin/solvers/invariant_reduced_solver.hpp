@@ -188,7 +188,6 @@ class InvariantReducedSolver {
   double hookPointMass() const;
   Vector6 barCoordinates(const Eigen::VectorXd& y) const;
   void addBarForce(const Vector6& Qb, Eigen::VectorXd& Q) const;
-  double barSwitchWorkError(const Vector6& b0, const Vector6& b1) const;
   // The bar went slack or taut, or turned, since the last factorisation.
   bool barChanged(const Eigen::VectorXd& y) const;
   // -psi(1) (x) f: the ground's generalized force as an internal force (0 without ground).
