@@ -67,7 +67,33 @@ bool InvariantReducedSimulation::startReduced(const CoupledState& f) {
           kStartVelocityTolerance) {
     return false;
   }
+  // A release whose axial rebound slackens the rope: the reduced steps before the slack put the
+  // snatch's path off by 1 to 2 cm (docs/model.md "Hand-over to full order").
+  // (Below zero by more than round-off: a stress-free rope's low point is its start's zero.)
+  const double end_weight = full_.model().end_mass * full_.rope().gravity().norm();
+  if (releaseTensionLowPoint(f) < -kLowPointRoundOff * end_weight) return false;
   return tryHandBack();
+}
+
+double InvariantReducedSimulation::releaseTensionLowPoint(const CoupledState& f) const {
+  const AncfRope& rope = full_.rope();
+  const double m = full_.model().end_mass;
+  const double inf = std::numeric_limits<double>::infinity();
+  const int e = rope.nodes() - 1;
+  const Eigen::Vector3d r = rope.position(f.q, e);
+  if (!(m > 0.0) || (full_.ground() && full_.ground()->clearance(r) < kGroundMargin)) return inf;
+  const Eigen::Vector3d chord = r - f.q.head<3>();
+  const double l = chord.norm();
+  if (!(l > 0.0)) return inf;
+  const Eigen::Vector3d u = chord / l;
+  const Eigen::Vector3d v = rope.position(f.v, e) - f.v.head<3>();
+  const Eigen::Vector3d ext = rope.externalEndForce();
+  const Eigen::Vector3d pull = m * (rope.position(f.qdd, e) - rope.gravity()) - ext;
+  const double T = -pull.dot(u);
+  const double s_dot = v.dot(u);
+  const double T_qs = m * (rope.gravity().dot(u) + (v - s_dot * u).squaredNorm() / l) + ext.dot(u);
+  const double k = rope.axialStiffnessAt(full_.ropeLength()) / full_.ropeLength();
+  return T_qs - std::sqrt((T - T_qs) * (T - T_qs) + k * m * s_dot * s_dot);
 }
 
 void InvariantReducedSimulation::continueFrom(const Simulation& other) {

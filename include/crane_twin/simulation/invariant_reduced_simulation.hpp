@@ -20,7 +20,10 @@
 //    N/m, so the shift is 1 s^-2) with the top held (what the basis leaves out), exceeds
 //    kIndicatorTolerance at a node.
 // A start the basis does not carry (the hand-back criteria below fail on the scene's initial
-// state: a stress-free rope, a velocity given to the payload alone) begins at full order. At
+// state: a stress-free rope, a velocity given to the payload alone) begins at full order, and so
+// does a release whose axial rebound will slacken the rope (releaseTensionLowPoint below zero:
+// a load released from its held equilibrium past 45 deg), whose path after the slack episode
+// is sensitive to the reduced steps before it. At
 // full order, after kHandBackDwell and then every kHandBackSteps steps (doubling after each
 // refused trial, up to kMaxHandBackInterval), the run comes back as soon as the rope is taut (no
 // node's strain and not the top tension below zero), the projection moves no node by more than
@@ -74,6 +77,15 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   long startHandOvers() const { return handOvers(Cause::start); }
   /// Largest indicator value seen on a reduced step [m].
   double maxIndicator() const { return max_indicator_; }
+  /// The end tension's forecast low point [N] at the start of a release (startReduced): the end
+  /// mass m on the rope's axial spring k = EA / L about the quasi-static pendulum tension
+  ///   T_qs = m (g . e + |v_perp|^2 / l) + F_ext . e   (e the unit chord from the top to the end)
+  /// rings with the axial energy E = (T - T_qs)^2 / (2 k) + m s'^2 / 2 (T the rope's pull on the
+  /// end now, from m (a - g) - F_ext; s' the chord's stretch rate) down to T_qs - sqrt(2 k E).
+  /// Released from its held equilibrium at theta: W (2 cos theta - 1 / cos theta), below zero
+  /// past 45 deg. +infinity without an end mass and for a load on (or within kGroundMargin of)
+  /// the ground, which is no release.
+  double releaseTensionLowPoint(const CoupledState& full) const;
 
   /// The hand-over's thresholds for this rope (HandOverSettings): taut again where no node's
   /// strain and not the top tension is below zero; hand-back trials after a 1 s dwell (the
@@ -115,6 +127,9 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   /// A rigging's payload moving against the hook at the start [m/s] (startReduced): a velocity
   /// given to the payload alone; an equilibrium start's is 0 to round-off.
   static constexpr double kStartVelocityTolerance = 1e-9;
+  /// A release's forecast low point counts as slack below -kLowPointRoundOff of the end weight
+  /// (releaseTensionLowPoint; a stress-free start's is zero up to its accelerations' round-off).
+  static constexpr double kLowPointRoundOff = 1e-6;
 
  protected:
   bool startReduced(const CoupledState& full) override;
