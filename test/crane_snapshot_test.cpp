@@ -7,8 +7,10 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "crane_twin/analysis/load_shapes.hpp"
+#include "crane_twin/analysis/structure_group_poses.hpp"
 #include "crane_twin/drives/command_guard.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
 #include "crane_twin/simulation/subdomain_reduced_simulation.hpp"
@@ -288,4 +290,59 @@ TEST(CommandWatchdog, ExpiresOnceAfterTheTimeout) {
   EXPECT_FALSE(never.expired(1e6));
   EXPECT_THROW(CommandWatchdog(-1.0), std::invalid_argument);
   EXPECT_THROW(CommandWatchdog(std::numeric_limits<double>::quiet_NaN()), std::invalid_argument);
+}
+
+TEST(StructureGroupPoses, FitsFromMomentsEqualTheFitsOfTheDisplacedNodes) {
+  // The groups' poses from their moments (linear in z) against rigidFit of the nodes displaced
+  // by u = Phi z, for random large coordinates (rotations of several degrees) and scales.
+  CraneSimulation sim(t8036({"initial.swing_deg=0"}));
+  sim.initialize();
+  const RopeSupport& support = sim.support();
+  const TowerCraneStructure& st = *support.structure();
+  const StructureGroupPoses poses(support);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  for (int trial = 0; trial < 4; ++trial) {
+    Eigen::VectorXd z(support.size());
+    for (int k = 0; k < z.size(); ++k) z(k) = 3.0 * normal(rng);
+    const double scale = trial == 0 ? 0.0 : 0.5 * trial;
+    const Eigen::VectorXd u = support.structureDisplacement(z);
+    for (const std::string group : {"mast", "slewing", "jib", "counter_jib"}) {
+      ASSERT_TRUE(poses.has(group)) << group;
+      std::vector<Eigen::Vector3d> x, y;
+      std::vector<bool> in(st.nodes.size(), false);
+      for (const StructureMember& m : st.members)
+        if (m.group == group) in[m.node1] = in[m.node2] = true;
+      for (std::size_t n = 0; n < in.size(); ++n) {
+        if (!in[n]) continue;
+        x.push_back(st.nodes[n]);
+        y.push_back(st.nodes[n] + scale * st.nodeDisplacement(u, static_cast<int>(n)));
+      }
+      const FramePose a = poses.fit(group, z, scale), b = rigidFit(x, y);
+      EXPECT_LT((a.position - b.position).norm(), 1e-9) << group;
+      EXPECT_LT(a.orientation.angularDistance(b.orientation), 1e-10) << group;
+    }
+  }
+  EXPECT_THROW(poses.fit("boom", Eigen::VectorXd::Zero(support.size()), 1.0),
+               std::invalid_argument);
+  EXPECT_THROW(poses.fit("jib", Eigen::VectorXd::Zero(3), 1.0), std::invalid_argument);
+}
+
+TEST(StructureGroupPoses, SnapshotWithThemEqualsTheSnapshotFromTheField) {
+  CraneSimulation sim(t8036({"initial.swing_deg=5"}));
+  sim.initialize();
+  for (int k = 0; k < 20; ++k) sim.step();
+  const StructureGroupPoses poses(sim.support());
+  SnapshotOptions field, moments;
+  field.displacement_scale = moments.displacement_scale = 50.0;
+  moments.group_poses = &poses;
+  moments.structure_segments = false;
+  const CraneSnapshot a = snapshotOf(sim, field), b = snapshotOf(sim, moments);
+  for (const auto& [pa, pb] :
+       {std::pair(a.mast, b.mast), std::pair(a.jib, b.jib),
+        std::pair(a.slewing_unit, b.slewing_unit), std::pair(a.counter_jib, b.counter_jib)}) {
+    EXPECT_LT((pa.position - pb.position).norm(), 1e-9);
+    EXPECT_LT(pa.orientation.angularDistance(pb.orientation), 1e-10);
+  }
+  EXPECT_TRUE(b.structure_segments.empty());
 }

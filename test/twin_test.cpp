@@ -3,9 +3,11 @@
 // joint follower.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <future>
 #include <random>
 
 #include "crane_twin/drives/joint_tracking_filter.hpp"
@@ -115,6 +117,32 @@ TEST(PayloadForecast, ThePendulumForecastsItsOwnFuture) {
   }
   EXPECT_GT(f.max_swing, 0.1);
   EXPECT_FALSE(f.failed);
+}
+
+TEST(PayloadForecast, CancelStopsARunningForecastAndPrepareClearsIt) {
+  // A forecast on another thread with a horizon it would take hours to reach stops once
+  // cancelled (a twin shutting down does not wait for it); prepared again, it runs to its
+  // horizon.
+  const CraneModel m = live({"rope.model=pendulum", "initial.swing_deg=4"});
+  std::unique_ptr<Simulation> twin = makeSimulation(m);
+  twin->initialize();
+  PayloadForecaster forecaster(m, 0.0);
+  forecaster.prepare(*twin);
+  const auto hold = [](double, const CraneDrives&) { return moving(); };
+  std::future<PayloadForecast> job =
+      std::async(std::launch::async, [&]() { return forecaster.runPrepared(hold, 1e7, 1.0); });
+  while (job.wait_for(std::chrono::milliseconds(20)) != std::future_status::ready) {
+    forecaster.cancel();
+  }
+  const PayloadForecast f = job.get();
+  EXPECT_TRUE(f.cancelled);
+  EXPECT_FALSE(f.failed);
+  ASSERT_FALSE(f.t.empty());
+  EXPECT_LT(f.t.back(), 1e7);
+  forecaster.prepare(*twin);
+  const PayloadForecast g = forecaster.runPrepared(hold, 2.0, 0.5);
+  EXPECT_FALSE(g.cancelled);
+  EXPECT_EQ(g.t.size(), 5u);
 }
 
 TEST(PayloadForecast, ForecastsATwinThatCameBackFromAStartAtFullOrder) {

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "crane_twin/analysis/structure_group_poses.hpp"
 #include "crane_twin/drives/crane_drives.hpp"
 #include "crane_twin/rope/rope_support.hpp"
 #include "crane_twin/solvers/full_order_solver.hpp"
@@ -105,16 +106,22 @@ CraneSnapshot snapshotOf(const Simulation& sim, const SnapshotOptions& options) 
   tip0 /= static_cast<double>(structure->jib_tip_nodes.size());
   s.jib_tip.position = tip0 + s.series.jib_tip;
   s.cab.position = structure->nodes[structure->cab_node] + s.series.cab;
-  const Eigen::VectorXd u = support.structureDisplacement(sim.fullState().z);
+  const Eigen::VectorXd z = sim.fullState().z;
   const double scale = options.displacement_scale;
+  Eigen::VectorXd u;
+  if (!options.group_poses || options.structure_segments) u = support.structureDisplacement(z);
+  auto fit = [&](const std::string& group) {
+    return options.group_poses ? options.group_poses->fit(group, z, scale)
+                               : groupFit(*structure, u, scale, group);
+  };
   // The rigid parts drawn where the deformed structure is: the mast without the slewing turn,
   // T_world = Rz T_fit Rz^T, the superstructure's parts in the slewing frame.
-  const FramePose mast = groupFit(*structure, u, scale, "mast");
+  const FramePose mast = fit("mast");
   s.mast.position = R * mast.position;
   s.mast.orientation = Eigen::Quaterniond(R) * mast.orientation * Eigen::Quaterniond(R).conjugate();
-  s.slewing_unit = groupFit(*structure, u, scale, "slewing");
-  s.jib = groupFit(*structure, u, scale, "jib");
-  s.counter_jib = groupFit(*structure, u, scale, "counter_jib");
+  s.slewing_unit = fit("slewing");
+  s.jib = fit("jib");
+  s.counter_jib = fit("counter_jib");
   if (options.structure_segments) {
     auto world = [&](int n) {
       return Eigen::Vector3d(R * (structure->nodes[n] + scale * structure->nodeDisplacement(u, n)));

@@ -79,6 +79,7 @@ void CraneSimNode::resetSimulation() {
 void CraneSimNode::restartSimulation(CommandInputs::Start start) {
   sim_ = makeSimulation(model_);
   sim_->initialize();
+  group_poses_ = std::make_unique<StructureGroupPoses>(sim_->support());
   lift_off_ = LiftOffMonitor();
   inputs_->attach(*sim_, model_, t_offset_, start);
   twin_->restart(model_, *sim_);
@@ -167,6 +168,7 @@ void CraneSimNode::takeMeasuredPayload(double mass) {
     const double from = model_.scene.payload_mass;
     model_ = std::move(m);
     sim_ = std::move(next);
+    group_poses_ = std::make_unique<StructureGroupPoses>(sim_->support());
     inputs_->attach(*sim_, model_, t_offset_, CommandInputs::Start::kContinued);
     twin_->loadChanged(model_);
     usage_->setPayloadMass(mass);
@@ -227,7 +229,9 @@ void CraneSimNode::publish() {
   last_publish_sim_ = t;
   last_publish_wall_ = now;
 
-  CraneSnapshot s = snapshotOf(*sim_, out_->optionsNow(now));
+  SnapshotOptions options = out_->optionsNow(now);
+  options.group_poses = group_poses_.get();
+  CraneSnapshot s = snapshotOf(*sim_, options);
   // A twin reading a load cell: landed as the load cell sees it, for crane/state, the lift-offs
   // and the usage (its own load may bounce where the real one does not; docs/twin.md).
   if (const std::optional<bool> landed = twin_->loadCellLanded()) {

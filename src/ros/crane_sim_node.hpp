@@ -18,6 +18,7 @@
 #include "command_inputs.hpp"
 #include "crane_twin/SetPayload.h"
 #include "crane_twin/analysis/crane_snapshot.hpp"
+#include "crane_twin/analysis/structure_group_poses.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/simulation/lift_off_monitor.hpp"
 #include "crane_twin/simulation/pacer.hpp"
@@ -45,6 +46,8 @@ class CraneSimNode {
   NodeSettings settings_;
   CraneModel model_;
   std::unique_ptr<Simulation> sim_;
+  /// The structure groups' poses for sim_'s support (set up with each new simulation).
+  std::unique_ptr<StructureGroupPoses> group_poses_;
   std::unique_ptr<CommandInputs> inputs_;  ///< commands, trajectories, wind, replay
   std::vector<ros::Subscriber> follower_subs_;
   std::vector<double> follower_t_;  ///< latest simulated time of each clock follower [s]

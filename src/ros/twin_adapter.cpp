@@ -89,10 +89,18 @@ void TwinAdapter::loadChanged(const CraneModel& model) {
   rebuildForecaster(model);
 }
 
+TwinAdapter::~TwinAdapter() {
+  if (forecaster_) forecaster_->cancel();
+}
+
 void TwinAdapter::rebuildForecaster(const CraneModel& model) {
-  // A running forecast keeps the old forecaster (its job holds it) and finishes on its own.
+  // A running forecast keeps the old forecaster (its job holds it), cancelled: its forecast is
+  // for the old load and dropped.
   dropFinishedRetiredJobs();
-  if (forecast_job_.valid()) retired_jobs_.push_back(std::move(forecast_job_));
+  if (forecast_job_.valid()) {
+    if (forecaster_) forecaster_->cancel();
+    retired_jobs_.push_back(std::move(forecast_job_));
+  }
   forecast_job_ = {};
   last_forecast_ = PayloadForecast{};
   forecaster_.reset();

@@ -53,6 +53,10 @@ class TwinAdapter {
   /// crane/measured_tension; advertises crane/payload_estimate and crane/forecast.
   TwinAdapter(ros::NodeHandle nh, const TwinSettings& settings, const CraneFrames& frames,
               const Eigen::Vector3d& base_position, double base_yaw);
+  /// Cancels a running forecast (its job then ends after its current step, not its horizon).
+  ~TwinAdapter();
+  TwinAdapter(const TwinAdapter&) = delete;
+  TwinAdapter& operator=(const TwinAdapter&) = delete;
   /// A new simulation `sim` of `model` started (reset, new load): the estimator back to its
   /// prior with the structure modes it sees at the start, the forecaster rebuilt for the model.
   /// Throws InputError for a forecast the model cannot run.
@@ -127,8 +131,8 @@ class TwinAdapter {
   PayloadForecast last_forecast_;
   /// The forecast running on its own thread (the node's steps go on meanwhile).
   std::future<PayloadForecast> forecast_job_;
-  /// Jobs of forecasters replaced while they ran (a new load): left to finish, never waited
-  /// for on the twin's thread, their forecasts dropped.
+  /// Jobs of forecasters replaced while they ran (a new load): cancelled, never waited for on
+  /// the twin's thread, their forecasts dropped.
   std::vector<std::future<PayloadForecast>> retired_jobs_;
   void dropFinishedRetiredJobs();
   void collectForecast(const std::function<ros::Time(double)>& stamp_of);

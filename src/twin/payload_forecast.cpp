@@ -38,7 +38,10 @@ PayloadForecast PayloadForecaster::run(const Simulation& twin, const CommandSour
   return runPrepared(source, horizon, sample_period);
 }
 
-void PayloadForecaster::prepare(const Simulation& twin) { continuable_->continueFrom(twin); }
+void PayloadForecaster::prepare(const Simulation& twin) {
+  cancelled_ = false;
+  continuable_->continueFrom(twin);
+}
 
 PayloadForecast PayloadForecaster::runPrepared(const CommandSource& source, double horizon,
                                                double sample_period) {
@@ -71,6 +74,10 @@ PayloadForecast PayloadForecaster::runPrepared(const CommandSource& source, doub
         next += sample_period;
       }
       if (sim_->time() >= end - eps) break;
+      if (cancelled_) {
+        f.cancelled = true;
+        break;
+      }
       sim_->setCommand(source(sim_->time(), sim_->drives()));
       sim_->step();
     }

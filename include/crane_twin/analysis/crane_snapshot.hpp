@@ -28,10 +28,15 @@
 
 namespace crane_twin {
 
+class StructureGroupPoses;
+
 struct SnapshotOptions {
   int samples_per_element = 4;      ///< rope curve points per element (>= 1)
   double displacement_scale = 1.0;  ///< structure displacement magnification (>= 0)
   bool structure_segments = true;   ///< build the structure's line segments
+  /// The groups' rigid fits from their moments (set up for the simulation's support), instead of
+  /// from the displacement field, which is then built only for the segments; nullptr: the field.
+  const StructureGroupPoses* group_poses = nullptr;
 };
 
 struct FramePose {

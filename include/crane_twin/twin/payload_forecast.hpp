@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -25,7 +26,8 @@ struct PayloadForecast {
   double max_swing = 0.0;                ///< largest horizontal payload offset from the trolley [m]
   double max_swing_time = 0.0;           ///< when [s]
   bool failed = false;                   ///< the forecast run failed numerically (path up to then)
-  double wall_seconds = 0.0;             ///< what the run cost [s of wall time]
+  bool cancelled = false;     ///< stopped by cancel() before its horizon (path up to then)
+  double wall_seconds = 0.0;  ///< what the run cost [s of wall time]
 };
 
 class PayloadForecaster {
@@ -46,12 +48,18 @@ class PayloadForecaster {
   /// state (cheap, on the twin's thread); runPrepared() then touches only the forecaster.
   void prepare(const Simulation& twin);
   PayloadForecast runPrepared(const CommandSource& source, double horizon, double sample_period);
+  /// Stops a runPrepared() running on another thread after its current step (its forecast then
+  /// says cancelled); the next prepare() clears it. A twin shutting down or changing its load
+  /// does not wait for a forecast it will drop (a forecast through a set-down's slack rope at
+  /// full order takes many wall seconds).
+  void cancel() { cancelled_ = true; }
   double timeStep() const { return time_step_; }
 
  private:
   std::unique_ptr<Simulation> sim_;
   ContinuableRun* continuable_ = nullptr;  ///< sim_'s, checked at construction
   double time_step_ = 0.0;
+  std::atomic<bool> cancelled_{false};
 };
 
 }  // namespace crane_twin
