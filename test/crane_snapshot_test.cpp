@@ -310,13 +310,9 @@ TEST(StructureGroupPoses, FitsFromMomentsEqualTheFitsOfTheDisplacedNodes) {
     for (const std::string group : {"mast", "slewing", "jib", "counter_jib"}) {
       ASSERT_TRUE(poses.has(group)) << group;
       std::vector<Eigen::Vector3d> x, y;
-      std::vector<bool> in(st.nodes.size(), false);
-      for (const StructureMember& m : st.members)
-        if (m.group == group) in[m.node1] = in[m.node2] = true;
-      for (std::size_t n = 0; n < in.size(); ++n) {
-        if (!in[n]) continue;
+      for (int n : st.groupNodes(group)) {
         x.push_back(st.nodes[n]);
-        y.push_back(st.nodes[n] + scale * st.nodeDisplacement(u, static_cast<int>(n)));
+        y.push_back(st.nodes[n] + scale * st.nodeDisplacement(u, n));
       }
       const FramePose a = poses.fit(group, z, scale), b = rigidFit(x, y);
       EXPECT_LT((a.position - b.position).norm(), 1e-9) << group;

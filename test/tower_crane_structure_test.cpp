@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 
 #include "crane_twin/io/config_reader.hpp"
@@ -29,6 +30,25 @@ TEST(TowerCraneStructure, SizeNearThePapersModel) {
   EXPECT_EQ(clampedNodes, 4);
   EXPECT_EQ(s.free_dofs, 6 * (static_cast<int>(s.nodes.size()) - 4));
   EXPECT_EQ(s.K.rows(), s.free_dofs);
+}
+
+TEST(TowerCraneStructure, GroupNodesAreTheEndsOfTheGroupsMembers) {
+  const auto& s = t8036();
+  for (const std::string group : {"mast", "slewing", "jib", "counter_jib"}) {
+    const std::vector<int> nodes = s.groupNodes(group);
+    ASSERT_GE(nodes.size(), 3u) << group;
+    EXPECT_TRUE(std::is_sorted(nodes.begin(), nodes.end())) << group;
+    EXPECT_EQ(std::adjacent_find(nodes.begin(), nodes.end()), nodes.end()) << group;
+    std::vector<bool> in(s.nodes.size(), false), end(s.nodes.size(), false);
+    for (int n : nodes) in[n] = true;
+    for (const StructureMember& m : s.members) {
+      if (m.group != group) continue;
+      EXPECT_TRUE(in[m.node1] && in[m.node2]) << group;
+      end[m.node1] = end[m.node2] = true;
+    }
+    for (int n : nodes) EXPECT_TRUE(end[n]) << group << " node " << n;
+  }
+  EXPECT_TRUE(s.groupNodes("boom").empty());
 }
 
 TEST(TowerCraneStructure, TotalMassIsMembersPlusLumpedMasses) {

@@ -22,15 +22,10 @@ Eigen::Quaterniond zAxisAlong(const Eigen::Vector3d& a) {
 // scale * u, in the slewing frame.
 FramePose groupFit(const TowerCraneStructure& structure, const Eigen::VectorXd& u, double scale,
                    const std::string& group) {
-  std::vector<bool> in(structure.nodes.size(), false);
-  for (const StructureMember& m : structure.members) {
-    if (m.group == group) in[m.node1] = in[m.node2] = true;
-  }
   std::vector<Eigen::Vector3d> x, y;
-  for (size_t n = 0; n < in.size(); ++n) {
-    if (!in[n]) continue;
+  for (int n : structure.groupNodes(group)) {
     x.push_back(structure.nodes[n]);
-    y.push_back(structure.nodes[n] + scale * structure.nodeDisplacement(u, static_cast<int>(n)));
+    y.push_back(structure.nodes[n] + scale * structure.nodeDisplacement(u, n));
   }
   return rigidFit(x, y);
 }

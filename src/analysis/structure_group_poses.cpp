@@ -12,18 +12,8 @@ StructureGroupPoses::StructureGroupPoses(const RopeSupport& support) {
   if (!s) return;
   coordinates_ = static_cast<int>(support.size());
   std::map<std::string, std::vector<int>> nodes;
-  {
-    std::map<std::string, std::vector<bool>> in;
-    for (const StructureMember& m : s->members) {
-      std::vector<bool>& f = in[m.group];
-      f.resize(s->nodes.size(), false);
-      f[m.node1] = f[m.node2] = true;
-    }
-    for (const auto& [group, f] : in) {
-      for (std::size_t n = 0; n < f.size(); ++n)
-        if (f[n]) nodes[group].push_back(static_cast<int>(n));
-    }
-  }
+  for (const StructureMember& m : s->members)
+    if (!nodes.count(m.group)) nodes[m.group] = s->groupNodes(m.group);
   for (const auto& [group, list] : nodes) {
     if (list.size() < 3) continue;
     Moments g;

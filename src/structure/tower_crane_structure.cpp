@@ -232,6 +232,16 @@ Eigen::VectorXd TowerCraneStructure::pointForce(const std::vector<NodeLoad>& at,
   return F;
 }
 
+std::vector<int> TowerCraneStructure::groupNodes(const std::string& group) const {
+  std::vector<bool> in(nodes.size(), false);
+  for (const StructureMember& m : members)
+    if (m.group == group) in[m.node1] = in[m.node2] = true;
+  std::vector<int> out;
+  for (std::size_t n = 0; n < in.size(); ++n)
+    if (in[n]) out.push_back(static_cast<int>(n));
+  return out;
+}
+
 Eigen::Vector3d TowerCraneStructure::nodeDisplacement(const Eigen::VectorXd& u, int node) const {
   Eigen::Vector3d d = Eigen::Vector3d::Zero();
   for (int k = 0; k < 3; ++k) {

@@ -71,6 +71,9 @@ class TowerCraneStructure {
   /// Translation of a node from a free-DOF displacement vector (0 for clamped DOFs).
   Eigen::Vector3d nodeDisplacement(const Eigen::VectorXd& u, int node) const;
 
+  /// The nodes of the members in `group` ("mast", "jib", ...), ascending; empty for none.
+  std::vector<int> groupNodes(const std::string& group) const;
+
  private:
   int addNode(const Eigen::Vector3d& p);
   void addMember(int a, int b, int section, const std::string& group);
