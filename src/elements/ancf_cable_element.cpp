@@ -121,7 +121,10 @@ double ancfAxialEnergy(double EA, double eps, bool tension_only) {
   const double d = kSlackBand, gc = kSlackGuardStrain;
   if (!tension_only) return 0.5 * EA * eps * eps;
   if (eps >= d) return 0.5 * EA * eps * eps + EA * d * d / 6.0;
-  if (eps > -d) return EA * std::pow(eps + d, 3) / (12.0 * d);
+  if (eps > -d) {
+    const double x = eps + d;
+    return EA * x * x * x / (12.0 * d);
+  }
   if (eps >= -gc) return 0.0;
   return 0.5 * EA * (eps + gc) * (eps + gc);
 }
