@@ -236,12 +236,13 @@ CoupledState InvariantReducedSimulation::handOverState() {
 
 bool InvariantReducedSimulation::errorTooLarge(long steps) {
   // Due every kCheckSteps steps; postponed while the solver runs a switching episode (its
-  // accelerations are step means, not the equations' own) and while a point of the rope is
-  // slack (header).
+  // accelerations are step means, not the equations' own), while a point of the rope is slack
+  // and while one carries under kIndicatorStrainFraction of the end mass's weight (header).
   if (steps % kCheckSteps == 0) indicator_due_ = true;
   if (!indicator_due_ || solver_->switching() || solver_->slackLength(state_.q) > 0.0) {
     return false;
   }
+  if (solver_->minStrain(state_.q) < kIndicatorStrainFraction * end_strain_) return false;
   indicator_due_ = false;
   syncFullRope();
   const double e = errorIndicator(solver_->expand(state_));
