@@ -200,13 +200,16 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   }
   // The energy the projection drops or adds (kinetic relative to the top, and strain) against
   // the rope's own, its swing's potential energy included: a hand-back that loses energy
-  // shifts the swing's amplitude and period for good.
+  // shifts the swing's amplitude and period for good. A load resting on the ground has no
+  // swing to shift (header: kHandBackEnergy).
   const CoupledState e = solver_->expand(r);
   const AncfRope& rope = full_.rope();
+  const bool resting = full_.ground() && full_.ground()->clearance(
+                                             rope.position(f.q, rope.nodes() - 1)) < kGroundMargin;
   const double Tf = rope.kineticEnergyRelativeToTop(f.v), Uf = rope.elasticEnergy(f.q);
   const double dE =
       std::abs(Tf - rope.kineticEnergyRelativeToTop(e.v)) + std::abs(Uf - rope.elasticEnergy(e.q));
-  if (!(dE < kHandBackEnergy * (Tf + Uf + swingEnergy(f)))) return false;
+  if (!resting && !(dE < kHandBackEnergy * (Tf + Uf + swingEnergy(f)))) return false;
   const double ind = errorIndicator(e);
   if (!(ind < kHandBackTolerance)) return false;
   state_ = r;
