@@ -88,8 +88,7 @@ void HandOverSimulation::step() {
     // A touchdown from the air goes to full order (a landing load sliding or tipping its rope
     // rings in shapes the basis does not hold); a rope that carries the ground stays reduced on
     // a landed load and through its lift-off.
-    const bool clear =
-        full_.ground()->clearance(reducedNode(full_.ropeNodes() - 1)) >= kGroundMargin;
+    const bool clear = !withinGroundMargin(reducedNode(full_.ropeNodes() - 1));
     const bool touchdown = !clear && (clear_of_ground_ || !carriesGround());
     clear_of_ground_ = clear;
     if (touchdown) {

@@ -81,7 +81,7 @@ double InvariantReducedSimulation::releaseTensionLowPoint(const CoupledState& f)
   const double inf = std::numeric_limits<double>::infinity();
   const int e = rope.nodes() - 1;
   const Eigen::Vector3d r = rope.position(f.q, e);
-  if (!(m > 0.0) || (full_.ground() && full_.ground()->clearance(r) < kGroundMargin)) return inf;
+  if (!(m > 0.0) || withinGroundMargin(r)) return inf;
   const Eigen::Vector3d chord = r - f.q.head<3>();
   const double l = chord.norm();
   if (!(l > 0.0)) return inf;
@@ -155,8 +155,7 @@ bool InvariantReducedSimulation::riggingSlackInTheAir() const {
   // hold. Its slack length counts as the rope's; a landed load's bar, slack under a resting or
   // rising hook, does not (a set-down hands over at its touchdown).
   if (solver_->barSlackLength(state_.q) <= kSlackLength) return false;
-  return !solver_->ground() ||
-         solver_->ground()->clearance(solver_->endPoint(state_.q)) >= kGroundMargin;
+  return !withinGroundMargin(solver_->endPoint(state_.q));
 }
 
 double InvariantReducedSimulation::errorIndicator(const CoupledState& f) const {
@@ -204,8 +203,7 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // swing to shift (header: kHandBackEnergy).
   const CoupledState e = solver_->expand(r);
   const AncfRope& rope = full_.rope();
-  const bool resting = full_.ground() && full_.ground()->clearance(
-                                             rope.position(f.q, rope.nodes() - 1)) < kGroundMargin;
+  const bool resting = withinGroundMargin(rope.position(f.q, rope.nodes() - 1));
   const double Tf = rope.kineticEnergyRelativeToTop(f.v), Uf = rope.elasticEnergy(f.q);
   const double dE =
       std::abs(Tf - rope.kineticEnergyRelativeToTop(e.v)) + std::abs(Uf - rope.elasticEnergy(e.q));
@@ -242,10 +240,11 @@ bool InvariantReducedSimulation::errorTooLarge(long steps) {
   // accelerations are step means, not the equations' own), while a point of the rope is slack
   // and while one carries under kIndicatorStrainFraction of the end mass's weight (header).
   if (steps % kCheckSteps == 0) indicator_due_ = true;
-  if (!indicator_due_ || solver_->switching() || solver_->slackLength(state_.q) > 0.0) {
+  // (A slack point's strain is below zero, so the second test also covers it.)
+  if (!indicator_due_ || solver_->switching() ||
+      solver_->minStrain(state_.q) < kIndicatorStrainFraction * end_strain_) {
     return false;
   }
-  if (solver_->minStrain(state_.q) < kIndicatorStrainFraction * end_strain_) return false;
   indicator_due_ = false;
   syncFullRope();
   const double e = errorIndicator(solver_->expand(state_));

@@ -136,6 +136,10 @@ class HandOverSimulation : public Simulation {
   void handOver(const CoupledState& full, Cause c);
   /// The hand-back trial (taut rope, then tryTakeOver).
   bool tryHandBack();
+  /// A point (the payload's) lies within kGroundMargin of the ground; false without a ground.
+  bool withinGroundMargin(const Eigen::Vector3d& point) const {
+    return full_.ground() && full_.ground()->clearance(point) < kGroundMargin;
+  }
   /// Continue the mechanism's state (clock, counters, schedule) of another run of this kind.
   void continueHandOverFrom(const HandOverSimulation& other);
 
