@@ -473,6 +473,51 @@ trolley: {radius: 30}
   }
 }
 
+// An equilibrium start whose unstretched rope hangs the load clear of the ground but whose static
+// equilibrium (the rope stretched under the load, the structure deflected) would put it inside
+// the ground is refused in every rope model, naming rope.length; a ground a centimetre under the
+// stretched equilibrium's underside is accepted and carries nothing at the start. (The pendulum
+// started such a load 0.37 m inside the ground and threw it up at 12 m/s; full order rested part
+// of its weight on the ground.)
+TEST(GroundLanding, AnEquilibriumStartThatStretchesIntoTheGroundIsRefused) {
+  const std::string crane = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/cranes/t8036.yaml";
+  const std::string scene = writeScene("stretch", "crane: " + crane + R"(
+duration: 1.0
+time_step: 0.001
+structure: {model: modal, modes: 20}
+rope: {model: full, elements: 20, length: 60.0}
+payload: {mass: 7200, height: 2.0}
+trolley: {radius: 55}
+)");
+  // The stretched equilibrium's underside (no ground) and the unstretched rope's.
+  std::unique_ptr<Simulation> free = makeSimulation(buildCraneModel(loadScene(scene, {})));
+  free->initialize();
+  const double stretched = free->series().payload.z() - 2.0;
+  const double unstretched = topHeight(scene, {"structure.model=rigid"}) - 60.0 - 2.0;
+  ASSERT_LT(stretched, unstretched - 0.05);  // the stretch and the deflection matter here
+  char inside[64], clear[64];
+  std::snprintf(inside, sizeof inside, "ground.height=%.6f", 0.5 * (stretched + unstretched));
+  std::snprintf(clear, sizeof clear, "ground.height=%.6f", stretched - 0.01);
+  for (const char* model : {"rope.model=full", "rope.model=reduced", "rope.model=pendulum"}) {
+    SCOPED_TRACE(model);
+    try {
+      std::unique_ptr<Simulation> sim =
+          makeSimulation(buildCraneModel(loadScene(scene, {model, inside})));
+      sim->initialize();
+      ADD_FAILURE() << "accepted a start inside the ground";
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("'rope.length'"), std::string::npos) << what;
+      EXPECT_NE(what.find("static equilibrium"), std::string::npos) << what;
+    }
+    std::unique_ptr<Simulation> sim =
+        makeSimulation(buildCraneModel(loadScene(scene, {model, clear})));
+    sim->initialize();
+    EXPECT_EQ(sim->series().contact_force, 0.0);
+    EXPECT_NEAR(sim->series().payload.z() - 2.0, stretched, 0.01);
+  }
+}
+
 // The default reduced rope carries the ground itself: a landed start and its lift-off stay
 // reduced (no step at full order), within 1 cm of full order, with the same dynamic factor; the
 // load lumped at the hook and on a rigging.

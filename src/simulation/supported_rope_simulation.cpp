@@ -261,6 +261,28 @@ void SupportedRopeSimulation::checkHangsClearOfGround(const Eigen::Vector3d& dir
   throw InputError(sc.file + b);
 }
 
+// An equilibrium start with a ground: the rope stretched by the load and the structure deflected
+// under it must still leave the load's underside above the ground. The unstretched check above
+// is necessary, not sufficient: a heavy load far out sinks by the rope's stretch and the jib's
+// deflection (a 7.2 t load at 55 m on the T8036: 0.4 m). Else the start would press the load into
+// the ground: a static solve that includes the contact rests part of the weight on it, one that
+// does not (the pendulum's) starts the load inside the ground, which throws it up.
+void SupportedRopeSimulation::checkRestsClearOfGround(const CoupledState& s) const {
+  const Scene& sc = model_.scene;
+  const double clearance = ground_->clearance(s.q.segment<3>(endPointIndex()));
+  if (clearance > 0.0) return;
+  char b[480];
+  std::snprintf(b, sizeof b,
+                ": key 'rope.length': %.4g m of rope put the load's underside at z = %.4g m at "
+                "the static equilibrium (the rope stretched by the load, the structure "
+                "deflected under it), not above ground.height %.4g m (initial.mode: %s); a "
+                "shorter rope.length hangs it clear, and a load resting on the ground starts "
+                "with initial.mode: landed",
+                sc.rope.length, ground_->parameters().height + clearance,
+                ground_->parameters().height, name(sc.initial_mode));
+  throw InputError(sc.file + b);
+}
+
 CoupledState SupportedRopeSimulation::sceneInitialState() {
   const Scene& sc = model_.scene;
   const double th = sc.swing_deg * M_PI / 180.0, az = sc.swing_azimuth_deg * M_PI / 180.0;
@@ -276,6 +298,7 @@ CoupledState SupportedRopeSimulation::sceneInitialState() {
     s.v = Eigen::VectorXd::Zero(s.q.size());
   } else {
     s = staticState();
+    if (ground_) checkRestsClearOfGround(s);
   }
   s.v.segment<3>(endPointIndex()) += sc.payload_velocity;
   s.t = 0.0;

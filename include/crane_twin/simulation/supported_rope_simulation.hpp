@@ -95,6 +95,8 @@ class SupportedRopeSimulation : public Simulation, public MeasuredWindInput {
   /// InputError unless a start other than landed, its rope along `dir` from the top, hangs the
   /// load clear of the ground.
   void checkHangsClearOfGround(const Eigen::Vector3d& dir) const;
+  /// The same for the equilibrium start's static state (stretched rope, deflected structure).
+  void checkRestsClearOfGround(const CoupledState& s) const;
 
   /// Equilibrium with the chord at swing_rad from the vertical, azimuth az_rad (the solver's).
   virtual CoupledState swingEquilibrium(double swing_rad, double az_rad,
