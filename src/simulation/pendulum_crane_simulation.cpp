@@ -41,17 +41,19 @@ Eigen::VectorXd PendulumCraneSimulation::straightRope(const Eigen::Vector3d& top
   return q;
 }
 
-// What the bar's end carries with the payload landed [N]: nothing, or on a rigging the hook
-// block, half the rigging and the bar's own lower half (its length l).
+// What the bar's end carries with the payload landed [N]: the bar's own lower half (its length
+// l: lumped at the end point, it hangs from the bar as the rope's lower half hangs from the rope
+// above it, so the top carries the whole rope's weight as an unloaded rope's top does), and on a
+// rigging the hook block and half the rigging.
 double PendulumCraneSimulation::unloadedEndLoad(double l) const {
-  if (!rigging_) return 0.0;
-  return (rope_->endMass() + 0.5 * rigging_->massPerLength() * rigging_->length() +
-          0.5 * rope_->massPerLength() * l) *
+  const double bar = 0.5 * rope_->massPerLength() * l;
+  if (!rigging_) return bar * model_.scene.gravity;
+  return (rope_->endMass() + 0.5 * rigging_->massPerLength() * rigging_->length() + bar) *
          model_.scene.gravity;
 }
 
-// The bar's tension is uniform: with its end unloaded it is unstretched over the span (the
-// hook block on a rigging stretches it by its weight over EA / L).
+// The bar's tension is uniform: with its end unloaded it is stretched by the end's load over
+// EA / L (its lower half's weight, and the hook block on a rigging).
 double PendulumCraneSimulation::unloadedHangingLength(double span) {
   const double L = span / (1.0 + unloadedEndLoad(span) / rope_->axialStiffness());
   rope_->setLength(L);

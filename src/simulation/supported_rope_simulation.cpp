@@ -194,34 +194,74 @@ CoupledState SupportedRopeSimulation::staticState(Eigen::Vector3d* holding_force
 // penetration, at payload_offset from under the rope's top; a rigging straight and unstretched
 // above it; the hoist rope hanging straight from the top to the hook, stretched by its own
 // weight with its end unloaded; what rope.length has beyond that lies on the load (piled_).
+// The structure at rest under the force the rope's top exerts on it (balanceLandedStructure).
 CoupledState SupportedRopeSimulation::landedState() {
   const Scene& sc = model_.scene;
-  const GroundContactParameters& g = ground_->parameters();
-  CoupledState s;
-  s.z = s.zd = Eigen::VectorXd::Zero(support_->size());
-  const double sink = model_.end_mass * sc.gravity / g.stiffness;
-  const double rigging = sc.hasRigging() ? sc.hook_rigging_length : 0.0;
-  const double L = sc.rope.length;
-  // The structure at rest under what hangs from it (the trolley, the hanging rope, and the
-  // hook block with half the rigging on a rigging): z = K_z^-1 D^T f. Two passes: the hanging
-  // length depends on where the top sinks to.
-  Eigen::Vector3d top, end, dir;
-  double span = 0.0, hanging = 0.0;
-  for (int pass = 0; pass < 2; ++pass) {
-    top = support_->point(s.z);
-    end = Eigen::Vector3d(top.x() + sc.payload_offset.x(), top.y() + sc.payload_offset.y(),
-                          g.height + g.payload_height - sink);
-    dir = (end - top).normalized();
-    span = (end - top).norm() - rigging;
-    hanging = span > 0.0 ? unloadedHangingLength(span) : 0.0;
-    if (support_->size() == 0 || !(span > 0.0)) break;
+  Eigen::VectorXd z = Eigen::VectorXd::Zero(support_->size());
+  if (support_->size() > 0) {
+    // First guess: the structure under what hangs from it, vertically (the trolley, the hanging
+    // rope, and the hook block with half the rigging on a rigging): z = K_z^-1 D^T f. Two
+    // passes: the hanging length depends on where the top sinks to.
     const double hook =
         sc.hasRigging() ? model_.hook_mass + 0.5 * sc.rope.mass_per_length * sc.hook_rigging_length
                         : 0.0;
-    const double held = model_.trolleyMass() + model_.rope.mass_per_length * hanging + hook;
-    support_->setIterationWeights(0.0, 0.0, 1.0);
-    s.z = support_->solvePointForce(Eigen::Vector3d(0.0, 0.0, -held * sc.gravity));
+    for (int pass = 0; pass < 2; ++pass) {
+      Eigen::Vector3d dir;
+      const double span = landedSpan(support_->point(z), dir);
+      if (!(span > 0.0)) break;  // landedStateAt names it
+      const double held =
+          model_.trolleyMass() + model_.rope.mass_per_length * unloadedHangingLength(span) + hook;
+      support_->setIterationWeights(0.0, 0.0, 1.0);
+      z = support_->solvePointForce(Eigen::Vector3d(0.0, 0.0, -held * sc.gravity));
+    }
   }
+  CoupledState s = landedStateAt(z);
+  if (support_->size() > 0) balanceLandedStructure(s);
+  return s;
+}
+
+// The hoist rope's span from the top to the landed load's hook [m], and its direction.
+double SupportedRopeSimulation::landedSpan(const Eigen::Vector3d& top, Eigen::Vector3d& dir) const {
+  const Scene& sc = model_.scene;
+  const GroundContactParameters& g = ground_->parameters();
+  const double sink = model_.end_mass * sc.gravity / g.stiffness;
+  const Eigen::Vector3d end(top.x() + sc.payload_offset.x(), top.y() + sc.payload_offset.y(),
+                            g.height + g.payload_height - sink);
+  dir = (end - top).normalized();
+  return (end - top).norm() - (sc.hasRigging() ? sc.hook_rigging_length : 0.0);
+}
+
+// The guess leaves the structure out of balance by what the rope's model carries at its top
+// differently (a pendulum's bar puts half its weight on the landed end; an inclined rope pulls
+// sideways): released, the structure's high modes ring and the top tension read through the
+// top's acceleration jumps tenfold. So: from the consistent accelerations at the state, the
+// static structure under the same forces, K_z dz = M_z z'', the rope hung again from the moved
+// top, until the top's acceleration is below kBalancedTopAcceleration (each pass cuts it by
+// about 3.6x on the T8036).
+void SupportedRopeSimulation::balanceLandedStructure(CoupledState& s) {
+  const Eigen::VectorXd rest = Eigen::VectorXd::Zero(s.z.size());
+  for (int it = 0; it < kMaxBalancePasses; ++it) {
+    s.t = 0.0;
+    initializeAccelerations(s);
+    if (support_->pointMotion(s.zdd).norm() < kBalancedTopAcceleration) return;
+    const Eigen::VectorXd inertia =
+        support_->internalForce(s.z, rest, s.zdd) - support_->internalForce(s.z, rest, rest);
+    support_->setIterationWeights(0.0, 0.0, 1.0);
+    s = landedStateAt(s.z + support_->solve(inertia));
+  }
+}
+
+// The landed state with the structure at z (its velocity zero).
+CoupledState SupportedRopeSimulation::landedStateAt(const Eigen::VectorXd& z) {
+  const Scene& sc = model_.scene;
+  CoupledState s;
+  s.z = z;
+  s.zd = Eigen::VectorXd::Zero(support_->size());
+  const double L = sc.rope.length;
+  const Eigen::Vector3d top = support_->point(s.z);
+  Eigen::Vector3d dir;
+  const double span = landedSpan(top, dir);
+  const double hanging = span > 0.0 ? unloadedHangingLength(span) : 0.0;
   if (!(span > 0.0) || L < hanging) {
     char b[320];
     std::snprintf(b, sizeof b,

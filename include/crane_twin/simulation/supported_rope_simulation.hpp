@@ -92,6 +92,12 @@ class SupportedRopeSimulation : public Simulation, public MeasuredWindInput {
   /// straight to it unloaded, the rest of rope.length lying on the load. Throws InputError
   /// naming rope.length where the rope cannot reach.
   CoupledState landedState();
+  /// The landed state with the structure at z, and the structure brought to rest under it.
+  CoupledState landedStateAt(const Eigen::VectorXd& z);
+  double landedSpan(const Eigen::Vector3d& top, Eigen::Vector3d& dir) const;
+  void balanceLandedStructure(CoupledState& s);
+  static constexpr int kMaxBalancePasses = 40;
+  static constexpr double kBalancedTopAcceleration = 1e-6;  ///< [m/s^2]
   /// InputError unless a start other than landed, its rope along `dir` from the top, hangs the
   /// load clear of the ground.
   void checkHangsClearOfGround(const Eigen::Vector3d& dir) const;
