@@ -304,7 +304,7 @@ void SupportedRopeSimulation::checkHangsClearOfGround(const Eigen::Vector3d& dir
 // An equilibrium start with a ground: the rope stretched by the load and the structure deflected
 // under it must still leave the load's underside above the ground. The unstretched check above
 // is necessary, not sufficient: a heavy load far out sinks by the rope's stretch and the jib's
-// deflection (a 7.2 t load at 55 m on the T8036: 0.4 m). Else the start would press the load into
+// deflection (a 7.2 t load at 55 m on the T8036: 0.37 m). Else the start would press the load into
 // the ground: a static solve that includes the contact rests part of the weight on it, one that
 // does not (the pendulum's) starts the load inside the ground, which throws it up.
 void SupportedRopeSimulation::checkRestsClearOfGround(const CoupledState& s) const {

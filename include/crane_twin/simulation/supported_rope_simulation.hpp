@@ -92,9 +92,13 @@ class SupportedRopeSimulation : public Simulation, public MeasuredWindInput {
   /// straight to it unloaded, the rest of rope.length lying on the load. Throws InputError
   /// naming rope.length where the rope cannot reach.
   CoupledState landedState();
-  /// The landed state with the structure at z, and the structure brought to rest under it.
+  /// The landed state with the structure at rest at z, the rope hung from its top there.
   CoupledState landedStateAt(const Eigen::VectorXd& z);
+  /// The hoist rope's span from the top to the landed load's hook [m] and its direction `dir`.
   double landedSpan(const Eigen::Vector3d& top, Eigen::Vector3d& dir) const;
+  /// Moves a landed state's structure to rest under what the rope's top exerts on it: passes of
+  /// K_z dz = M_z z'' from the consistent accelerations, the rope hung again from the moved top,
+  /// until the top's acceleration is under kBalancedTopAcceleration (at most kMaxBalancePasses).
   void balanceLandedStructure(CoupledState& s);
   static constexpr int kMaxBalancePasses = 40;
   static constexpr double kBalancedTopAcceleration = 1e-6;  ///< [m/s^2]
