@@ -257,6 +257,47 @@ std::vector<std::string> csvRows(const std::string& path, std::string& header) {
   return rows;
 }
 
+// static on a scene with a ground: a landed start prints itself (a rest state: the load on the
+// ground where `run` starts it, the rope's own weight at the top, in every rope model); an
+// equilibrium whose stretched rope puts the load inside the ground is refused as `run` refuses
+// it. (Before, full order's static solve with the ground failed on the landed scene and the
+// pendulum's printed its hanging load 1.5 m inside the ground.)
+TEST(CraneSimCli, StaticOfAGroundSceneIsItsRestingStart) {
+  const std::string lift =
+      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_lift_off_fast.yaml";
+  auto value = [](const std::string& out, const std::string& key) {
+    const std::size_t at = out.find(key + ",");
+    EXPECT_NE(at, std::string::npos) << key << "\n" << out;
+    return at == std::string::npos ? NAN : std::stod(out.substr(at + key.size() + 1));
+  };
+  const Result first =
+      run("run " + lift + " --set rope.model=full --set duration=0.01 --set " +
+          "output_interval=0.01 --quiet --out " + testing::TempDir() + "landed_start.csv");
+  ASSERT_EQ(first.status, 0) << first.out;
+  std::ifstream csv(testing::TempDir() + "landed_start.csv");
+  std::string header, row;
+  std::getline(csv, header);
+  std::getline(csv, row);
+  const double z_start = column(header, row, "payload_z");
+  const double t_start = column(header, row, "rope_top_tension");
+  for (const char* model : {"full", "reduced", "pendulum"}) {
+    SCOPED_TRACE(model);
+    const Result r = run("static " + lift + " --set rope.model=" + model);
+    ASSERT_EQ(r.status, 0) << r.out;
+    EXPECT_NEAR(value(r.out, "payload_z"), z_start, 1e-6);
+    EXPECT_NEAR(value(r.out, "rope_top_tension"), t_start, 1e-3 * t_start);
+    EXPECT_EQ(value(r.out, "holding_force_x"), 0.0);
+  }
+  const std::string down =
+      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_set_down.yaml";
+  for (const char* model : {"full", "pendulum"}) {
+    const Result r = run("static " + down + " --set rope.model=" + model +
+                         " --set payload.mass=7194 --set trolley.radius=54.9");
+    EXPECT_EQ(r.status, 2) << model << ": " << r.out;
+    EXPECT_NE(r.out.find("'rope.length'"), std::string::npos) << r.out;
+  }
+}
+
 TEST(CraneSimCli, T8036RunsAtFullOrderWithStructureOutputs) {
   const std::string csv = ::testing::TempDir() + "crane_sim_t8036.csv";
   for (const char* model : {"modal", "full"}) {

@@ -250,12 +250,22 @@ void printStresses(const ct::CraneModel& m, const Eigen::VectorXd& z) {
   }
 }
 
+// The scene's start at rest: the static equilibrium, or a landed start (itself a rest state: the
+// load on the ground, the rope hanging unloaded, no holding force).
+template <class Sim>
+ct::CoupledState restingStart(const ct::CraneModel& m, Sim& sim, Eigen::Vector3d& H) {
+  H.setZero();
+  if (m.scene.initial_mode != ct::InitialMode::landed) return sim.staticState(&H);
+  sim.initialize();
+  return sim.fullState();
+}
+
 int runStatic(const SceneArgs& a) {
   const ct::CraneModel m = ct::buildCraneModel(ct::loadScene(a.scene, a.sets));
   Eigen::Vector3d H;
   if (m.scene.rope.model == ct::RopeModel::pendulum) {
     ct::PendulumCraneSimulation sim(m);
-    const ct::CoupledState s = sim.staticState(&H);
+    const ct::CoupledState s = restingStart(m, sim, H);
     const Eigen::Vector3d p = s.q.tail<3>();
     std::printf("payload_x,%.9f\npayload_y,%.9f\npayload_z,%.9f\n", p.x(), p.y(), p.z());
     std::printf("rope_top_tension,%.6f\n", sim.topTension(s));
@@ -266,7 +276,7 @@ int runStatic(const SceneArgs& a) {
     return 0;
   }
   ct::CraneSimulation sim(m);
-  const ct::CoupledState s = sim.staticState(&H);
+  const ct::CoupledState s = restingStart(m, sim, H);
   const Eigen::Vector3d p = sim.rope().position(s.q, sim.rope().nodes() - 1);
   std::printf("payload_x,%.9f\npayload_y,%.9f\npayload_z,%.9f\n", p.x(), p.y(), p.z());
   std::printf("rope_top_tension,%.6f\n", sim.solver().topTension(s));

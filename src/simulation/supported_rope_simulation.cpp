@@ -186,8 +186,10 @@ bool SupportedRopeSimulation::advanceDrives(double t, double dt, const Eigen::Ve
 
 CoupledState SupportedRopeSimulation::staticState(Eigen::Vector3d* holding_force) {
   const Scene& sc = model_.scene;
-  return swingEquilibrium(sc.swing_deg * M_PI / 180.0, sc.swing_azimuth_deg * M_PI / 180.0,
-                          holding_force);
+  const CoupledState s = swingEquilibrium(sc.swing_deg * M_PI / 180.0,
+                                          sc.swing_azimuth_deg * M_PI / 180.0, holding_force);
+  if (ground_) checkRestsClearOfGround(s);
+  return s;
 }
 
 // docs/scenes.md "initial.mode: landed": the payload at rest on the ground at its static
@@ -338,7 +340,6 @@ CoupledState SupportedRopeSimulation::sceneInitialState() {
     s.v = Eigen::VectorXd::Zero(s.q.size());
   } else {
     s = staticState();
-    if (ground_) checkRestsClearOfGround(s);
   }
   s.v.segment<3>(endPointIndex()) += sc.payload_velocity;
   s.t = 0.0;

@@ -60,7 +60,8 @@ class SupportedRopeSimulation : public Simulation, public MeasuredWindInput {
   bool advanceDrives(double t, double dt, const Eigen::VectorXd& z);
   /// Static equilibrium of the scene (`initial.mode: equilibrium`: the chord at
   /// `initial.swing_deg`, azimuth `initial.swing_azimuth_deg`), the horizontal force on the end
-  /// mass that holds it into *holding_force.
+  /// mass that holds it into *holding_force. With a ground, InputError naming rope.length where
+  /// it puts the load's underside at or below the ground (checkRestsClearOfGround).
   CoupledState staticState(Eigen::Vector3d* holding_force = nullptr);
 
   /// After a step: the payload's position and velocity [m, m/s] and the rope's top tension [N].
