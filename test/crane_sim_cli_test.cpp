@@ -226,6 +226,19 @@ TEST(CraneSimCli, StaticPrintsKeys) {
   }
 }
 
+// modes of a landed scene: the hanging rope's, the ground taking no part (as in every static
+// solve of the hanging rope); before, full order's static solve with the landed load's ground
+// failed ("static solve did not converge").
+TEST(CraneSimCli, RopeModesOfALandedSceneAreTheHangingRopes) {
+  const std::string lift =
+      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_lift_off_fast.yaml";
+  const Result landed = run("modes " + lift + " --part rope --count 3");
+  const Result far = run("modes " + lift + " --part rope --count 3 --set ground.height=-100");
+  ASSERT_EQ(landed.status, 0) << landed.out;
+  ASSERT_EQ(far.status, 0) << far.out;
+  EXPECT_EQ(landed.out, far.out);
+}
+
 TEST(CraneSimCli, UnbuiltCombinationsAreRefusedClearly) {
   Result r = run("run " + kRope +
                  " --set rope.model=reduced --set rope.reduction=subdomains"

@@ -48,19 +48,7 @@ CraneSimulation::CraneSimulation(const CraneModel& m) : SupportedRopeSimulation(
 
 CoupledState CraneSimulation::swingEquilibrium(double swing_rad, double az_rad,
                                                Eigen::Vector3d* holding_force) {
-  // The hanging equilibrium, as the pendulum's, without the ground: a start whose load it would
-  // reach is refused (SupportedRopeSimulation::checkRestsClearOfGround), and where it does not
-  // the contact carries nothing.
-  const std::optional<GroundContact> ground = solver_->ground();
-  solver_->setGround(std::nullopt);
-  try {
-    CoupledState s = solver_->solveSwingEquilibrium(swing_rad, az_rad, holding_force);
-    solver_->setGround(ground);
-    return s;
-  } catch (...) {
-    solver_->setGround(ground);
-    throw;
-  }
+  return solver_->solveSwingEquilibrium(swing_rad, az_rad, holding_force);
 }
 
 void CraneSimulation::resetDrives() {

@@ -3,6 +3,7 @@
 #include <Eigen/UmfPackSupport>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 
 #include "crane_twin/integrators/numerical_failure.hpp"
@@ -181,9 +182,30 @@ void FullOrderSolver::factorize(const std::string& what) {
   if (ldlt_.info() != Eigen::Success) throw NumericalFailure(what + ": singular iteration matrix");
 }
 
+namespace {
+// The ground set aside for a scope and put back when it ends, also by an exception.
+class GroundSetAside {
+ public:
+  explicit GroundSetAside(std::optional<GroundContact>& ground)
+      : ground_(ground), kept_(std::move(ground)) {
+    ground_.reset();
+  }
+  ~GroundSetAside() { ground_ = std::move(kept_); }
+  GroundSetAside(const GroundSetAside&) = delete;
+  GroundSetAside& operator=(const GroundSetAside&) = delete;
+
+ private:
+  std::optional<GroundContact>& ground_;
+  std::optional<GroundContact> kept_;
+};
+}  // namespace
+
 CoupledState FullOrderSolver::solveStatic(const Eigen::VectorXd& q_guess,
                                           const Eigen::VectorXd& z_guess,
                                           const Eigen::Vector3d& end_force) {
+  // The hanging rope's statics, as the pendulum's: without the ground (a start whose load it
+  // would reach is refused, SupportedRopeSimulation::checkRestsClearOfGround).
+  const GroundSetAside aside(ground_);
   const int n = rope_.dofs(), m = support_.size();
   CoupledState s;
   s.q = q_guess;

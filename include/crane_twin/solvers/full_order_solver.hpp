@@ -55,7 +55,8 @@ class FullOrderSolver {
 
   /// Static equilibrium under gravity and a constant force on the end mass, damped Newton from
   /// (q_guess, z_guess) (q_guess must carry tension: see solveSwingEquilibrium). Returns the
-  /// state at rest (v = 0); -lambda is the support force on the rope.
+  /// state at rest (v = 0); -lambda is the support force on the rope. The hanging rope's
+  /// statics: the ground (setGround) takes no part.
   CoupledState solveStatic(const Eigen::VectorXd& q_guess, const Eigen::VectorXd& z_guess,
                            const Eigen::Vector3d& end_force);
 
