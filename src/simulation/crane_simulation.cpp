@@ -4,6 +4,7 @@
 #include <iomanip>
 
 #include "crane_twin/io/input_error.hpp"
+#include "crane_twin/rope/held_rope_equilibrium.hpp"
 #include "crane_twin/rope/rope_modes.hpp"
 
 namespace crane_twin {
@@ -156,7 +157,12 @@ double CraneSimulation::unloadedHangingLength(double span) {
 Eigen::VectorXd CraneSimulation::unloadedHangingRope(const Eigen::Vector3d& top,
                                                      const Eigen::Vector3d& dir) const {
   const double w = rope_->element().mass_per_length * model_.scene.gravity;
-  return rope_->stretchedStraight(top, dir, 0.0, w);
+  Eigen::VectorXd q = rope_->stretchedStraight(top, dir, 0.0, w);
+  // Hanging plumb, that is its rest state. Inclined (a load landed off-centre), the straight
+  // rope is not: its weight across it would sag it by decimetres in the first seconds (2 m out
+  // under 64 m on the T8036: 0.48 m). So the rope settles between its held ends.
+  if (dir.x() != 0.0 || dir.y() != 0.0) settleBetweenHeldEnds(*rope_, q);
+  return q;
 }
 
 void CraneSimulation::initializeAccelerations(CoupledState& s) {
