@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "crane_twin/integrators/numerical_failure.hpp"
 #include "crane_twin/io/input_error.hpp"
 
 namespace crane_twin {
@@ -67,7 +68,45 @@ Eigen::VectorXd PendulumCraneSimulation::unloadedHangingRope(const Eigen::Vector
   if (!rigging_) return PendulumRope::straight(top, dir, l);
   Eigen::VectorXd q(9);
   q << top, top + l * dir, top + (l + rigging_->length()) * dir;
+  // Off-centre, the hook block on the straight inclined line is not at rest (it swung towards
+  // plumb, 6 mm within 0.2 s 2 m out): it settles where the bars and its weight balance,
+  // Newton on the hook's position with a backtracking line search on the potential energy
+  // (settleBetweenHeldEnds at full order), the top and the payload held.
+  if (dir.x() != 0.0 || dir.y() != 0.0) settleHook(q);
   return q;
+}
+
+void PendulumCraneSimulation::settleHook(Eigen::VectorXd& q) const {
+  const Eigen::Vector3d F = rope_->gravityForce().tail<3>() + rigging_->gravityForce().head<3>();
+  const auto bars = [&](const Eigen::VectorXd& x, Eigen::Vector3d* r, Eigen::Matrix3d* K) {
+    Vector6 Q1, Q2;
+    Matrix6 K1, K2;
+    rope_->elasticForce(x.head<6>(), Q1, K ? &K1 : nullptr);
+    rigging_->elasticForce(x.tail<6>(), Q2, K ? &K2 : nullptr);
+    if (r) *r = F - Q1.tail<3>() - Q2.head<3>();
+    if (K) *K = K1.bottomRightCorner<3, 3>() + K2.topLeftCorner<3, 3>();
+    return rope_->elasticEnergy(x.head<6>()) + rigging_->elasticEnergy(x.tail<6>()) -
+           F.dot(x.segment<3>(3));
+  };
+  for (int it = 0; it < kHookSettleIterations; ++it) {
+    Eigen::Vector3d r;
+    Eigen::Matrix3d K;
+    const double pi0 = bars(q, &r, &K);
+    const Eigen::LLT<Eigen::Matrix3d> llt(K);
+    if (llt.info() != Eigen::Success) break;
+    const Eigen::Vector3d d = llt.solve(r);
+    if (d.norm() < kHookSettleTolerance) return;
+    Eigen::VectorXd trial = q;
+    double step = 1.0;
+    for (int k = 0; k < 40; ++k, step *= 0.5) {
+      trial.segment<3>(3) = q.segment<3>(3) + step * d;
+      if (d.norm() < 1e-6 || bars(trial, nullptr, nullptr) <= pi0 - 1e-4 * step * d.dot(r)) break;
+    }
+    q = trial;
+  }
+  throw NumericalFailure(
+      "the hook block between the rope and the rigging (initial.mode: landed) did not settle "
+      "into its static equilibrium");
 }
 
 void PendulumCraneSimulation::initialize() {

@@ -67,6 +67,12 @@ class PendulumCraneSimulation final : public SupportedRopeSimulation, public Con
  private:
   // The load on the bar's end with the payload landed [N] (the bar of length l).
   double unloadedEndLoad(double l) const;
+  /// A landed start's hook block on a rigging off-centre: its position q[3..5] where the hoist
+  /// bar's and the rigging's forces balance its weight, the top and the payload held (throws
+  /// NumericalFailure where it does not settle).
+  void settleHook(Eigen::VectorXd& q) const;
+  static constexpr int kHookSettleIterations = 100;
+  static constexpr double kHookSettleTolerance = 1e-10;  ///< [m] on the Newton correction
   std::unique_ptr<PendulumRope> rope_;
   std::unique_ptr<PendulumRope> rigging_;  ///< hook block to payload (hook.rigging_length > 0)
   std::unique_ptr<PendulumSolver> solver_;
