@@ -11,8 +11,8 @@ namespace crane_twin {
 
 namespace {
 
-// The free coordinates' index in the reduced system (-1: held): the top node's position, the
-// hook node's position and, with a rigging, the payload point.
+// The free coordinates' index in the reduced system (-1: held): the top node's position and
+// the chain's end (the hook node; with a rigging the payload point).
 std::vector<int> freeIndex(const AncfRope& rope, int& free_count) {
   std::vector<int> index(rope.dofs(), 0);
   const auto hold = [&](int first) {

@@ -1,7 +1,8 @@
 // The static equilibrium of a rope hanging between two held points (docs/scenes.md "Initial
-// state", initial.mode: landed): its top node and its end (the hook node, and a rigging's
-// payload point) stay where the guess puts them; every other coordinate settles under the
-// rope's weight. It minimises the potential energy over the free coordinates f,
+// state", initial.mode: landed): its top node and its end (the hook node; with a rigging the
+// payload point, the hook block then free) stay where the guess puts them; every other
+// coordinate settles under the chain's weight. It minimises the potential energy over the free
+// coordinates f,
 //   Pi(q) = U(q) - F_g^T q,      grad_f Pi = Q_f(q) - F_g,f = 0,
 // by Newton on K_t,ff dq_f = F_g,f - Q_f(q) with a backtracking line search on Pi (a rope whose
 // lower end carries almost no tension starts nearly without lateral stiffness there).
