@@ -156,8 +156,13 @@ double CraneSimulation::unloadedHangingLength(double span) {
 
 Eigen::VectorXd CraneSimulation::unloadedHangingRope(const Eigen::Vector3d& top,
                                                      const Eigen::Vector3d& dir) const {
-  const double w = rope_->element().mass_per_length * model_.scene.gravity;
-  Eigen::VectorXd q = rope_->stretchedStraight(top, dir, 0.0, w);
+  const double g = model_.scene.gravity, w = rope_->element().mass_per_length * g;
+  // A rigging's lower half rests on the landed load (unloadedHangingLength): its bar
+  // unstretched, the hoist rope carrying the hook block and the upper half.
+  const double end_force =
+      rope_->hasRigging() ? -0.5 * g * rope_->rigging().massPerLength() * rope_->rigging().length()
+                          : 0.0;
+  Eigen::VectorXd q = rope_->stretchedStraight(top, dir, end_force, w);
   // Hanging plumb, that is its rest state. Inclined (a load landed off-centre), the straight
   // rope is not: its weight across it would sag it by decimetres in the first seconds (2 m out
   // under 64 m on the T8036: 0.48 m). So the rope settles between its held ends.
