@@ -17,7 +17,6 @@
 
 #include "crane_twin/rope/invariant_rope_basis.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
-#include "crane_twin/simulation/invariant_reduced_simulation.hpp"
 #include "crane_twin/solvers/full_order_solver.hpp"
 #include "crane_twin/solvers/invariant_reduced_solver.hpp"
 

@@ -2,7 +2,7 @@
 
 #include <Eigen/SparseCholesky>
 #include <cmath>
-#include <cstdio>
+#include <string>
 #include <vector>
 
 #include "crane_twin/integrators/numerical_failure.hpp"
@@ -11,7 +11,7 @@ namespace crane_twin {
 
 namespace {
 
-// The free coordinates' index in the reduced system (-1: held): the top node's position and
+// The free coordinates' index in the system they form (-1: held): the top node's position and
 // the chain's end (the hook node; with a rigging the payload point).
 std::vector<int> freeIndex(const AncfRope& rope, int& free_count) {
   std::vector<int> index(rope.dofs(), 0);

@@ -100,7 +100,9 @@ void PendulumCraneSimulation::settleHook(Eigen::VectorXd& q) const {
     double step = 1.0;
     for (int k = 0; k < 40; ++k, step *= 0.5) {
       trial.segment<3>(3) = q.segment<3>(3) + step * d;
-      if (d.norm() < 1e-6 || bars(trial, nullptr, nullptr) <= pi0 - 1e-4 * step * d.dot(r)) break;
+      if (d.norm() < kHookLineSearchBelow ||
+          bars(trial, nullptr, nullptr) <= pi0 - 1e-4 * step * d.dot(r))
+        break;
     }
     q = trial;
   }

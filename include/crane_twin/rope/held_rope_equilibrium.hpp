@@ -9,7 +9,6 @@
 #pragma once
 
 #include <Eigen/Dense>
-#include <string>
 
 #include "crane_twin/rope/ancf_rope.hpp"
 

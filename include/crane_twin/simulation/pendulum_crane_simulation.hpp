@@ -73,6 +73,9 @@ class PendulumCraneSimulation final : public SupportedRopeSimulation, public Con
   void settleHook(Eigen::VectorXd& q) const;
   static constexpr int kHookSettleIterations = 100;
   static constexpr double kHookSettleTolerance = 1e-10;  ///< [m] on the Newton correction
+  /// Below this correction [m] the full Newton step, without a line search (the energy's change
+  /// drowns in its round-off there).
+  static constexpr double kHookLineSearchBelow = 1e-6;
   std::unique_ptr<PendulumRope> rope_;
   std::unique_ptr<PendulumRope> rigging_;  ///< hook block to payload (hook.rigging_length > 0)
   std::unique_ptr<PendulumSolver> solver_;
