@@ -1,23 +1,15 @@
 #include "crane_sim_node.hpp"
 
 #include <diagnostic_msgs/DiagnosticArray.h>
-#include <ros/master.h>
 
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <optional>
-#include <set>
 #include <sstream>
 
-#include "crane_twin/integrators/numerical_failure.hpp"
 #include "crane_twin/io/config_reader.hpp"
-#include "crane_twin/io/site_description.hpp"
-#include "crane_twin/simulation/crane_simulation.hpp"
-#include "node_params.hpp"
 #include "node_status.hpp"
 #include "ros_messages.hpp"
 
@@ -30,24 +22,18 @@ CraneSimNode::CraneSimNode(ros::NodeHandle nh, ros::NodeHandle pnh, NodeSettings
       model_(buildCraneModel(loadScene(settings_.scene, settings_.overrides))) {
   if (settings_.duration < 0.0) settings_.duration = model_.scene.duration;
   paused_ = settings_.start_paused;
-  // The crane on the site: world -> <prefix>base, latched (docs/site.md).
   frames_.prefix = settings_.frame_prefix;
-  Eigen::Vector3d base = model_.scene.site_position;
-  double yaw = model_.scene.site_yaw_deg * M_PI / 180.0;
-  if (!settings_.base_pose.empty()) {
-    base = Eigen::Vector3d(settings_.base_pose[0], settings_.base_pose[1], settings_.base_pose[2]);
-    yaw = settings_.base_pose[3];
-  }
+  const BasePose site = basePoseOf(settings_, model_.scene);  // world -> <prefix>base, latched
   if (settings_.twin.measured_input && !settings_.command_bag.empty()) {
     throw InputError("parameters '~input' 'measured' and '~command_bag' exclude each other");
   }
-  twin_ = std::make_unique<TwinAdapter>(nh_, settings_.twin, frames_, base, yaw);
-  inputs_ = std::make_unique<CommandInputs>(nh_, settings_, model_, yaw, failure_);
+  twin_ = std::make_unique<TwinAdapter>(nh_, settings_.twin, frames_, site.position, site.yaw);
+  inputs_ = std::make_unique<CommandInputs>(nh_, settings_, model_, site.yaw, failure_);
   usage_ = std::make_unique<UsageLink>(nh_, settings_.usage, model_);
   resetSimulation();
   recorder_ =
       std::make_unique<RecorderLink>(nh_, settings_.wait_for_recorder, settings_.recorded_topics);
-  out_ = std::make_unique<StatePublisher>(nh_, settings_, frames_, base, yaw);
+  out_ = std::make_unique<StatePublisher>(nh_, settings_, frames_, site.position, site.yaw);
   diag_pub_ = nh_.advertise<diagnostic_msgs::DiagnosticArray>("/diagnostics", 5);
   follower_t_.assign(settings_.clock_followers.size(), -std::numeric_limits<double>::infinity());
   for (std::size_t i = 0; i < settings_.clock_followers.size(); ++i) {
@@ -302,15 +288,7 @@ void CraneSimNode::publishDiagnostics() {
 // clock's followers, another node's /clock), publish at each publication time.
 void CraneSimNode::run() {
   const double dt = model_.scene.time_step, period = 1.0 / settings_.publish_rate;
-  PacerSettings pacing;
-  pacing.real_time_factor = settings_.real_time_factor;
-  pacing.publish_period = period;
-  pacing.time_step = dt;
-  pacing.follow_clock = settings_.follow_clock;
-  // A twin keeps the crane's time: it races back from a lag within its catch-up (its
-  // measurements held until it gets there, TwinAdapter).
-  if (settings_.twin.measured_input) pacing.catch_up = settings_.twin.catch_up;
-  pacer_ = std::make_unique<Pacer>(pacing);
+  pacer_ = std::make_unique<Pacer>(pacerSettingsOf(settings_, dt));
   std::vector<const ros::Publisher*> own = out_->publishers();
   own.push_back(&inputs_->appliedPublisher());
   own.push_back(&diag_pub_);

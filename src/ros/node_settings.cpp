@@ -121,4 +121,27 @@ NodeSettings readNodeSettings(const ros::NodeHandle& pnh) {
   return s;
 }
 
+BasePose basePoseOf(const NodeSettings& settings, const Scene& scene) {
+  BasePose p;
+  if (settings.base_pose.empty()) {
+    p.position = scene.site_position;
+    p.yaw = scene.site_yaw_deg * M_PI / 180.0;
+  } else {
+    const std::vector<double>& b = settings.base_pose;
+    p.position = Eigen::Vector3d(b[0], b[1], b[2]);
+    p.yaw = b[3];
+  }
+  return p;
+}
+
+PacerSettings pacerSettingsOf(const NodeSettings& settings, double time_step) {
+  PacerSettings pacing;
+  pacing.real_time_factor = settings.real_time_factor;
+  pacing.publish_period = 1.0 / settings.publish_rate;
+  pacing.time_step = time_step;
+  pacing.follow_clock = settings.follow_clock;
+  if (settings.twin.measured_input) pacing.catch_up = settings.twin.catch_up;
+  return pacing;
+}
+
 }  // namespace crane_twin

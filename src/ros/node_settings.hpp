@@ -4,10 +4,13 @@
 
 #include <ros/ros.h>
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
 
 #include "crane_twin/analysis/crane_snapshot.hpp"
+#include "crane_twin/io/scene.hpp"
+#include "crane_twin/simulation/pacer.hpp"
 #include "twin_adapter.hpp"
 #include "usage_link.hpp"
 
@@ -50,5 +53,18 @@ struct NodeSettings {
 
 /// Read and check the private parameters. Throws InputError naming the parameter.
 NodeSettings readNodeSettings(const ros::NodeHandle& pnh);
+
+/// The mast foot on the site (world -> <prefix>base): ~base_pose if given, else the scene's
+/// `site` (docs/site.md). position [m], yaw [rad] about world z.
+struct BasePose {
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+  double yaw = 0.0;
+};
+BasePose basePoseOf(const NodeSettings& settings, const Scene& scene);
+
+/// The node's pacing (Pacer): real_time_factor, a publication every 1 / publish_rate s, steps of
+/// `time_step`, /clock followed or not; a twin races back from a lag within its catch-up
+/// (docs/twin.md: its measurements are held until it gets there, TwinAdapter).
+PacerSettings pacerSettingsOf(const NodeSettings& settings, double time_step);
 
 }  // namespace crane_twin
