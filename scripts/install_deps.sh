@@ -6,7 +6,7 @@
 set -euo pipefail
 CORE_PKGS=(
   build-essential cmake pkg-config
-  libeigen3-dev libsuitesparse-dev libarpack2-dev libyaml-cpp-dev libcli11-dev
+  libeigen3-dev libsuitesparse-dev libarpack2-dev liblapack-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev libboost-dev
   parallel python3-yaml clang-format
 )

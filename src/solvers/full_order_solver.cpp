@@ -56,6 +56,7 @@ FullOrderSolver::FullOrderSolver(const AncfRope& rope, RopeSupport& support,
         rigging_index_.push_back(static_cast<int>(&A_.coeffRef(r[i], r[j]) - A_.valuePtr()));
   }
   ldlt_.analyzePattern(A_);
+  band_.emplace(A_);
 }
 
 void FullOrderSolver::continueSteppingOf(const FullOrderSolver& o) {
@@ -178,8 +179,18 @@ Eigen::VectorXd FullOrderSolver::condensedRhs(const Eigen::VectorXd& rq, const E
 }
 
 void FullOrderSolver::factorize(const std::string& what) {
+  if (!factorizeIterationMatrix()) throw NumericalFailure(what + ": singular iteration matrix");
+}
+
+bool FullOrderSolver::factorizeIterationMatrix() {
+  band_factorized_ = band_->factorize(A_);
+  if (band_factorized_) return true;
   ldlt_.factorize(A_);
-  if (ldlt_.info() != Eigen::Success) throw NumericalFailure(what + ": singular iteration matrix");
+  return ldlt_.info() == Eigen::Success;
+}
+
+Eigen::VectorXd FullOrderSolver::solveFactorized(const Eigen::VectorXd& rhs) const {
+  return band_factorized_ ? band_->solve(rhs) : Eigen::VectorXd(ldlt_.solve(rhs));
 }
 
 namespace {
@@ -299,7 +310,7 @@ void FullOrderSolver::initializeAccelerations(CoupledState& s) {
   const Eigen::VectorXd rhs =
       condensedRhs(rope_.gravityForce() - Q, rz, Eigen::Vector3d::Zero(), Azr);
   factorize("initial accelerations");
-  const Eigen::VectorXd x = ldlt_.solve(rhs);
+  const Eigen::VectorXd x = solveFactorized(rhs);
   storeConsistentAccelerations(support_, x.head(n), x.tail<3>(), Azr, s);
   last_step_length_ = rope_.length();  // a start, not a hoist
   switching_.switching = false;        // consistent accelerations: generalized-alpha's start
@@ -439,12 +450,11 @@ bool FullOrderSolver::energyConsistentStep(CoupledState& s, double h, std::strin
 
 bool FullOrderSolver::solveIncrement(const Eigen::VectorXd& rhs, Eigen::VectorXd& dq,
                                      Eigen::Vector3d& dmu, std::string& reason) {
-  ldlt_.factorize(A_);
-  if (ldlt_.info() != Eigen::Success) {
+  if (!factorizeIterationMatrix()) {
     reason = "singular iteration matrix";
     return false;
   }
-  const Eigen::VectorXd dx = ldlt_.solve(rhs);
+  const Eigen::VectorXd dx = solveFactorized(rhs);
   dq = dx.head(rope_.dofs());
   dmu = dx.tail<3>();
   return true;

@@ -14,12 +14,12 @@
 // has entries of the order of M whatever the step. The support block is eliminated by its
 // Schur complement (RopeSupport): Delta z = A_z^-1 (r_z + D^T Delta mu), leaving the rope's
 // KKT system with the 3 x 3 block -G = -D A_z^-1 D^T in the multiplier rows (zero for an
-// anchor; constant while the step size is). The rope block is banded; with the three
-// multiplier rows ordered last, a sparse LDL^T in natural order (Eigen's SimplicialLDLT) meets
-// the zero diagonal only after the rope block (the pivot is then the negative Schur complement
-// -C_q A11^-1 C_q^T) and fills in just those three rows. The pattern is analysed once; the
-// values are written in place every iteration and refactorised: this solver supplies that
-// linear solve (RopeIncrement). Converged when max|Delta q| < position_tolerance (default
+// anchor; constant while the step size is). The rope block is banded: the bordered band
+// factorisation (bordered_band_factorization.hpp, LAPACK's band Cholesky) solves the whole
+// system, with a sparse LDL^T in natural order (Eigen's SimplicialLDLT, the multiplier rows
+// last) for an iteration whose rope block is not positive definite. The values are written
+// into a fixed pattern every iteration and refactorised: this solver supplies that linear
+// solve (RopeIncrement). Converged when max|Delta q| < position_tolerance (default
 // 1e-10 m) and |C| < constraint_tolerance (1e-12 m). Failed steps are halved
 // (integrators/step_halving.hpp).
 #pragma once
@@ -37,6 +37,7 @@
 #include "crane_twin/integrators/tension_only_step.hpp"
 #include "crane_twin/rope/ancf_rope.hpp"
 #include "crane_twin/rope/rope_support.hpp"
+#include "crane_twin/solvers/bordered_band_factorization.hpp"
 
 namespace crane_twin {
 
@@ -134,6 +135,10 @@ class FullOrderSolver {
                                const Eigen::Vector3d& rc, Eigen::VectorXd& Azinv_rz) const;
   // Factorise A_; throws NumericalFailure with `what` on failure.
   void factorize(const std::string& what);
+  // Factorise A_: the bordered band Cholesky, or the sparse LDL^T where the rope block is not
+  // positive definite; false where neither succeeds. solveFactorized then solves with it.
+  bool factorizeIterationMatrix();
+  Eigen::VectorXd solveFactorized(const Eigen::VectorXd& rhs) const;
   // One step of size h from s; false (s unchanged, the reason in why) where Newton fails.
   bool tryStep(CoupledState& s, double h, std::string& why);
   // One generalized-alpha step, or one energy-consistent step (see step()).
@@ -162,7 +167,11 @@ class FullOrderSolver {
   std::vector<double> mass_value_;
   std::vector<int> element_index_;  ///< 144 value slots per element, column-major 12 x 12
   std::vector<int> rigging_index_;  ///< 36 value slots of the rigging bar, column-major 6 x 6
+  /// A_ solved by block elimination of its banded rope block (the usual case) ...
+  std::optional<BorderedBandFactorization> band_;
+  /// ... or, where that block is not positive definite, by a sparse LDL^T in natural order.
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt_;
+  bool band_factorized_ = false;  ///< the last factorisation is band_'s
 };
 
 }  // namespace crane_twin
