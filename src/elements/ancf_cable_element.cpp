@@ -79,11 +79,14 @@ void addPoint(const Eigen::Vector4d& sx, const Eigen::Vector4d& sxx, const Cable
   }
   addVec(sxx, d.fb, w, Q);
   if (!K) return;
-  for (int i = 0; i < 4; ++i)
-    for (int j = i; j < 4; ++j)
-      K->block<3, 3>(3 * i, 3 * j) +=
-          w * ((sx(i) * sx(j)) * d.Paa + (sx(i) * sxx(j)) * d.Pab +
-               (sxx(i) * sx(j)) * d.Pab.transpose() + (sxx(i) * sxx(j)) * d.Pbb);
+  // K_ij += w (sx_i sx_j Paa + sx_i sxx_j Pab + sxx_i sx_j Pab^T + sxx_i sxx_j Pbb) (upper
+  // blocks, i <= j), as K_ij += sx_i Ta_j + sxx_i Tb_j with the column factors
+  // Ta_j = w (sx_j Paa + sxx_j Pab), Tb_j = w (sx_j Pab^T + sxx_j Pbb): a quarter of the products.
+  for (int j = 0; j < 4; ++j) {
+    const Eigen::Matrix3d Ta = w * (sx(j) * d.Paa + sxx(j) * d.Pab);
+    const Eigen::Matrix3d Tb = w * (sx(j) * d.Pab.transpose() + sxx(j) * d.Pbb);
+    for (int i = 0; i <= j; ++i) K->block<3, 3>(3 * i, 3 * j) += sx(i) * Ta + sxx(i) * Tb;
+  }
 }
 
 // The lower block triangle of K from the upper one.
