@@ -25,7 +25,6 @@
 #include "crane_twin/simulation/lift_off_monitor.hpp"
 #include "crane_twin/simulation/pendulum_crane_simulation.hpp"
 #include "crane_twin/simulation/simulation.hpp"
-#include "crane_twin/simulation/subdomain_reduced_simulation.hpp"
 #include "crane_twin/structure/modal_analysis.hpp"
 
 namespace ct = crane_twin;
