@@ -19,18 +19,23 @@ void HandOverSimulation::initialize() {
   full_.setState(f);
   // A start the reduced rope cannot carry (a stress-free rope, a velocity given to the payload
   // alone) runs at full order until the hand-back criteria hold.
-  if (!startReduced(f)) handOver(f, Cause::start);
+  const Start start = startReduced(f);
+  if (start != Start::reduced) handOver(f, Cause::start, start == Start::outside_basis);
 }
 
-bool HandOverSimulation::startReduced(const CoupledState&) { return tryHandBack(); }
+HandOverSimulation::Start HandOverSimulation::startReduced(const CoupledState&) {
+  return tryHandBack() ? Start::reduced : Start::outside_basis;
+}
 
-void HandOverSimulation::handOver(const CoupledState& full, Cause c) {
+void HandOverSimulation::handOver(const CoupledState& full, Cause c, bool quiet) {
   if (restartsAtHandOver()) {
     full_.restartFrom(full);
   } else {
     full_.setState(full);
   }
   full_since_ = full.t;
+  dwell_ = quiet ? std::min(settings_.quiet_hand_back_dwell, settings_.hand_back_dwell)
+                 : settings_.hand_back_dwell;
   hand_back_interval_ = hand_back_countdown_ = settings_.hand_back_steps;
   full_order_ = true;
   ++hand_overs_[static_cast<int>(c)];
@@ -61,10 +66,14 @@ void HandOverSimulation::step() {
     full_.step();
     ++full_order_steps_;
     // Trials every hand_back_steps steps after the dwell, the interval doubling after each
-    // refused trial up to max_hand_back_interval (a scene that stays violent costs little).
-    if (full_.time() - full_since_ >= settings_.hand_back_dwell && --hand_back_countdown_ <= 0) {
+    // refused trial once hand_back_dwell has passed, up to max_hand_back_interval (a scene that
+    // stays violent costs little; a quiet one is tried often while its waves die out).
+    const double since = full_.time() - full_since_;
+    if (since >= dwell_ && --hand_back_countdown_ <= 0) {
       if (!tryHandBack()) {
-        hand_back_interval_ = std::min(2 * hand_back_interval_, settings_.max_hand_back_interval);
+        if (since >= settings_.hand_back_dwell) {
+          hand_back_interval_ = std::min(2 * hand_back_interval_, settings_.max_hand_back_interval);
+        }
         hand_back_countdown_ = hand_back_interval_;
       }
     }
@@ -92,7 +101,7 @@ void HandOverSimulation::step() {
     const bool touchdown = !clear && (clear_of_ground_ || !carriesGround());
     clear_of_ground_ = clear;
     if (touchdown) {
-      handOver(handOverState(), Cause::ground);
+      handOver(handOverState(), Cause::ground, true);
       return;
     }
   }
@@ -150,6 +159,7 @@ void HandOverSimulation::continueHandOverFrom(const HandOverSimulation& o) {
   full_order_ = o.full_order_;
   steps_ = o.steps_;
   full_since_ = o.full_since_;
+  dwell_ = o.dwell_;
   hand_back_interval_ = o.hand_back_interval_;
   hand_back_countdown_ = o.hand_back_countdown_;
   clear_of_ground_ = o.clear_of_ground_;

@@ -36,6 +36,7 @@ HandOverSettings InvariantReducedSimulation::handOverSettingsFor() {
   h.taut_tension_fraction = 0.0;
   h.taut_strain_fraction = 0.0;
   h.hand_back_dwell = kHandBackDwell;
+  h.quiet_hand_back_dwell = kQuietHandBackDwell;
   h.hand_back_steps = kHandBackSteps;
   h.max_hand_back_interval = kMaxHandBackInterval;
   return h;
@@ -54,7 +55,7 @@ InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model)
   solver_->setGround(groundContactOf(full_.model()));
 }
 
-bool InvariantReducedSimulation::startReduced(const CoupledState& f) {
+HandOverSimulation::Start InvariantReducedSimulation::startReduced(const CoupledState& f) {
   max_indicator_ = 0.0;
   indicator_due_ = false;
   solver_->resetSwitching();
@@ -65,14 +66,16 @@ bool InvariantReducedSimulation::startReduced(const CoupledState& f) {
   if (rope.hasRigging() &&
       (rope.position(f.v, rope.nodes() - 1) - rope.position(f.v, rope.hookNode())).norm() >
           kStartVelocityTolerance) {
-    return false;
+    return Start::ringing;
   }
   // A release whose axial rebound slackens the rope: the reduced steps before the slack put the
   // snatch's path off by 1 to 2 cm (docs/model.md "Hand-over to full order").
   // (Below zero by more than round-off: a stress-free rope's low point is its start's zero.)
   const double end_weight = full_.model().end_mass * full_.rope().gravity().norm();
-  if (releaseTensionLowPoint(f) < -kLowPointRoundOff * end_weight) return false;
-  return tryHandBack();
+  if (releaseTensionLowPoint(f) < -kLowPointRoundOff * end_weight) return Start::ringing;
+  // Else a start the basis does not hold (a stress-free rope) comes back as soon as the
+  // hand-back's tests pass: a quiet hand-over.
+  return tryHandBack() ? Start::reduced : Start::outside_basis;
 }
 
 double InvariantReducedSimulation::releaseTensionLowPoint(const CoupledState& f) const {

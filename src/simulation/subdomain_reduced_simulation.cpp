@@ -60,12 +60,12 @@ SubdomainReducedSimulation::SubdomainReducedSimulation(const CraneModel& model)
                                                      model.scene.time_step, settingsFor(model));
 }
 
-bool SubdomainReducedSimulation::startReduced(const CoupledState& full) {
+HandOverSimulation::Start SubdomainReducedSimulation::startReduced(const CoupledState& full) {
   refused_hand_backs_ = 0;
   solver_->initialize(full);
   basis_length_ = -1.0;  // the first hoisting step renews the basis
   hoist_subdomain_ = -1;
-  return true;  // a subdomain starts on any state
+  return Start::reduced;  // a subdomain starts on any state
 }
 
 bool SubdomainReducedSimulation::tryTakeOver(const CoupledState& f) {

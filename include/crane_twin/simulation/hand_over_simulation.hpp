@@ -11,8 +11,10 @@
 //    the state (errorTooLarge);
 //    and when the payload's underside comes down to within kGroundMargin of the ground (a
 //    touchdown; docs/model.md "Ground contact");
-//  - at full order: after hand_back_dwell of simulated time and then every hand_back_steps steps
-//    (doubling after each refused trial, up to max_hand_back_interval), a hand-back trial: the
+//  - at full order: after hand_back_dwell of simulated time (quiet_hand_back_dwell after a quiet
+//    hand-over: a touchdown, a start the basis does not hold that forecasts no slack) and then
+//    every hand_back_steps steps (doubling after each refused trial once hand_back_dwell has
+//    passed, up to max_hand_back_interval), a hand-back trial: the
 //    rope taut (top tension above taut_tension_fraction of the weight, every node's strain above
 //    taut_strain_fraction of the end mass's static strain less the slack band kSlackBand, the
 //    payload at least 2 kGroundMargin above the ground) and the reduced rope takes the state over
@@ -38,8 +40,12 @@ constexpr double kGroundMargin = 0.05;
 struct HandOverSettings {
   double slack_tension_fraction = 0.1, taut_tension_fraction = 0.2;
   double slack_strain_fraction = 0.1, taut_strain_fraction = 0.2;
-  int strain_check_steps = 10;       ///< reduced steps between strain checks
-  double hand_back_dwell = 1.0;      ///< simulated time at full order before the first trial [s]
+  int strain_check_steps = 10;   ///< reduced steps between strain checks
+  double hand_back_dwell = 1.0;  ///< simulated time at full order before the first trial [s]
+  /// The same after a quiet hand-over [s] (a touchdown, a start the basis does not hold that
+  /// forecasts no slack: Start::outside_basis): trials every hand_back_steps from this dwell on,
+  /// doubling only once hand_back_dwell has passed (at most the smaller of the two dwells).
+  double quiet_hand_back_dwell = 0.1;
   int hand_back_steps = 20;          ///< full-order steps between trials at first
   int max_hand_back_interval = 640;  ///< the interval doubles after each refused trial up to this
 };
@@ -48,6 +54,11 @@ class HandOverSimulation : public Simulation {
  public:
   /// Why a run went to full order (counted per cause).
   enum class Cause { start, slack, failure, indicator, fast_hoist, ground };
+  /// How a run starts (startReduced): the reduced rope takes the scene's initial state; or the
+  /// run starts at full order, for a start the basis does not hold that forecasts no slack (a
+  /// stress-free rope: a quiet hand-over), or for one that rings (a release whose rebound will
+  /// slacken the rope, a velocity given to the payload alone). Either is a Cause::start.
+  enum class Start { reduced, outside_basis, ringing };
   /// What a reduced step reports: carried, or the full model must take the step just begun
   /// (the reduced state is still at its start: a failed step, a hoist too fast for the basis).
   enum class Verdict { carried, failed, fast_hoist };
@@ -93,10 +104,10 @@ class HandOverSimulation : public Simulation {
   HandOverSimulation(const CraneModel& model, const HandOverSettings& settings);
 
   // ---- what a reduced rope provides ------------------------------------------------------
-  /// Start the reduced rope on the scene's initial state `full` (full_ holds it): true where it
-  /// takes it over (default: the hand-back trial), false to start at full order. Resets the
-  /// reduced rope's own counters.
-  virtual bool startReduced(const CoupledState& full);
+  /// Start the reduced rope on the scene's initial state `full` (full_ holds it), or say why
+  /// the run starts at full order (default: the hand-back trial, outside_basis where it fails).
+  /// Resets the reduced rope's own counters.
+  virtual Start startReduced(const CoupledState& full);
   /// One reduced step of h (the drives have advanced); throws nothing: a failure is a Verdict.
   virtual Verdict reducedStep() = 0;
   /// Take over a full-coordinate state (full_'s current); false, nothing changed, where the
@@ -132,8 +143,9 @@ class HandOverSimulation : public Simulation {
   virtual int reducedSubdomains() const { return 0; }
   virtual double reducedModeUpdateSeconds() const { return 0.0; }
 
-  /// Hand the state `full` over to full order, for cause c.
-  void handOver(const CoupledState& full, Cause c);
+  /// Hand the state `full` over to full order, for cause c; a quiet hand-over (a touchdown, a
+  /// start outside the basis) tries the hand-back from quiet_hand_back_dwell on.
+  void handOver(const CoupledState& full, Cause c, bool quiet = false);
   /// The hand-back trial (taut rope, then tryTakeOver).
   bool tryHandBack();
   /// A point (the payload's) lies within kGroundMargin of the ground; false without a ground.
@@ -154,6 +166,7 @@ class HandOverSimulation : public Simulation {
   long full_order_steps_ = 0;
   std::array<long, static_cast<int>(Cause::ground) + 1> hand_overs_{};  ///< per Cause
   double full_since_ = 0.0;      ///< time of the last hand-over [s]
+  double dwell_ = 0.0;           ///< its dwell before the first hand-back trial [s]
   bool clear_of_ground_ = true;  ///< the reduced payload was kGroundMargin clear at its last step
   int hand_back_interval_ = 0, hand_back_countdown_ = 0;
 };

@@ -65,7 +65,7 @@ class SubdomainReducedSimulation final : public HandOverSimulation {
   const SubdomainReducedSolver& solver() const { return *solver_; }
 
  protected:
-  bool startReduced(const CoupledState& full) override;
+  Start startReduced(const CoupledState& full) override;
   Verdict reducedStep() override;
   bool tryTakeOver(const CoupledState& full) override;
   CoupledState handOverState() override { return solver_->fullState(); }
