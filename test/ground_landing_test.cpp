@@ -726,9 +726,7 @@ TEST(GroundLanding, ReducedRopeComesBackAfterAnOffCentreLiftOff) {
 
 // t8036_set_down: the load lands vertically, the jib springs up under the lost load and rings
 // (0.28 Hz, 18 cm), and at each of its low points the rope's lowest point nearly unloads. The
-// touchdown hands over, quietly: the hand-back is tried from 0.1 s on and comes back at the first
-// trial, 0.12 s later (it stayed a second at full order before); the run then stays reduced.
-// The error indicator's static
+// touchdown hands over for a second; the run then stays reduced. The error indicator's static
 // correction grows as 1 / N where a point nears zero tension (8.5 mm at 11.72 s with the lowest
 // strain at 1.6e-6, 0.1 % of the load's), not with the state's error, and handed this run over
 // three more times (4909 full-order steps in 20 s) for no accuracy (the rope within 9.2 mm RMS of
@@ -742,7 +740,11 @@ TEST(GroundLanding, ReducedRopeStaysReducedOnASetDownLoad) {
       r.stats.hand_overs, r.stats.full_order_steps, r.payload, r.rope_rms);
   EXPECT_EQ(r.stats.hand_overs, 1);  // the touchdown's
   EXPECT_FALSE(r.stats.integrating_full_order);
-  EXPECT_LT(r.stats.full_order_steps, 300);
+  EXPECT_LT(r.stats.full_order_steps, 1500);
+  // A touchdown is no quiet hand-over: its trials wait the second (docs/model.md "Hand-over to
+  // full order": trials from 0.1 s let a pick-and-place on a rigging back into the jib's rebound
+  // and 1.04 cm from full order).
+  EXPECT_GE(r.stats.full_order_steps, 1000);
   EXPECT_LT(r.payload, 0.01);
   EXPECT_LT(r.rope_rms, 0.01);
 }

@@ -101,7 +101,7 @@ void HandOverSimulation::step() {
     const bool touchdown = !clear && (clear_of_ground_ || !carriesGround());
     clear_of_ground_ = clear;
     if (touchdown) {
-      handOver(handOverState(), Cause::ground, true);
+      handOver(handOverState(), Cause::ground);
       return;
     }
   }

@@ -12,7 +12,7 @@
 //    and when the payload's underside comes down to within kGroundMargin of the ground (a
 //    touchdown; docs/model.md "Ground contact");
 //  - at full order: after hand_back_dwell of simulated time (quiet_hand_back_dwell after a quiet
-//    hand-over: a touchdown, a start the basis does not hold that forecasts no slack) and then
+//    hand-over: a start the basis does not hold that forecasts no slack) and then
 //    every hand_back_steps steps (doubling after each refused trial once hand_back_dwell has
 //    passed, up to max_hand_back_interval), a hand-back trial: the
 //    rope taut (top tension above taut_tension_fraction of the weight, every node's strain above
@@ -42,9 +42,9 @@ struct HandOverSettings {
   double slack_strain_fraction = 0.1, taut_strain_fraction = 0.2;
   int strain_check_steps = 10;   ///< reduced steps between strain checks
   double hand_back_dwell = 1.0;  ///< simulated time at full order before the first trial [s]
-  /// The same after a quiet hand-over [s] (a touchdown, a start the basis does not hold that
-  /// forecasts no slack: Start::outside_basis): trials every hand_back_steps from this dwell on,
-  /// doubling only once hand_back_dwell has passed (at most the smaller of the two dwells).
+  /// The same after a quiet hand-over [s] (a start the basis does not hold that forecasts no
+  /// slack: Start::outside_basis): trials every hand_back_steps from this dwell on, doubling
+  /// only once hand_back_dwell has passed (at most the smaller of the two dwells).
   double quiet_hand_back_dwell = 0.1;
   int hand_back_steps = 20;          ///< full-order steps between trials at first
   int max_hand_back_interval = 640;  ///< the interval doubles after each refused trial up to this
@@ -143,8 +143,8 @@ class HandOverSimulation : public Simulation {
   virtual int reducedSubdomains() const { return 0; }
   virtual double reducedModeUpdateSeconds() const { return 0.0; }
 
-  /// Hand the state `full` over to full order, for cause c; a quiet hand-over (a touchdown, a
-  /// start outside the basis) tries the hand-back from quiet_hand_back_dwell on.
+  /// Hand the state `full` over to full order, for cause c; a quiet hand-over (a start outside
+  /// the basis) tries the hand-back from quiet_hand_back_dwell on.
   void handOver(const CoupledState& full, Cause c, bool quiet = false);
   /// The hand-back trial (taut rope, then tryTakeOver).
   bool tryHandBack();
