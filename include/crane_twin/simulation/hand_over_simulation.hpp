@@ -56,8 +56,9 @@ class HandOverSimulation : public Simulation {
   enum class Cause { start, slack, failure, indicator, fast_hoist, ground };
   /// How a run starts (startReduced): the reduced rope takes the scene's initial state; or the
   /// run starts at full order, for a start the basis does not hold that forecasts no slack (a
-  /// stress-free rope: a quiet hand-over), or for one that rings (a release whose rebound will
-  /// slacken the rope, a velocity given to the payload alone). Either is a Cause::start.
+  /// stress-free rope, a slanted landed rope: a quiet hand-over), or for one that rings (a
+  /// release whose rebound will slacken the rope, a rigging's payload given its own velocity).
+  /// Either is a Cause::start.
   enum class Start { reduced, outside_basis, ringing };
   /// What a reduced step reports: carried, or the full model must take the step just begun
   /// (the reduced state is still at its start: a failed step, a hoist too fast for the basis).
