@@ -191,6 +191,11 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // The full model may have hoisted since the hand-over (or a new run reset the length): the
   // solver to the rope's length first.
   solver_->refreshLength();
+  // Not into an axial ringing that will bring the rope under kIndicatorStrainFraction of the end
+  // weight: at those low points the error indicator does not look (errorTooLarge), and the
+  // transverse waves they pump leave the basis (header: the forecast's floor).
+  const double end_weight = full_.model().end_mass * full_.rope().gravity().norm();
+  if (releaseTensionLowPoint(f) < kIndicatorStrainFraction * end_weight) return false;
   const double pe = solver_->projectionError(f.q);
   const bool firmly_taut = AncfRope::minNodalStrain(f.q) >= kFirmlyTautStrain * end_strain_;
   if (pe > (firmly_taut ? kIndicatorTolerance : kHandBackTolerance)) return false;

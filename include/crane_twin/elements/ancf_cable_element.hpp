@@ -45,8 +45,10 @@ Eigen::Vector4d ancfShapeDxx(double xi, double l);
 constexpr double kSlackGuardStrain = 0.2;
 /// Half width of the strain band over which a tension-only rope's force rises from 0 to EA eps
 /// with a continuous tangent (ancfAxialLaw) [-]: a kink there made Newton cycle between slack and
-/// taut and the 60 deg swing gain energy without bound.
-constexpr double kSlackBand = 1e-5;
+/// taut and the 60 deg swing gain energy without bound. Narrow (docs/model.md "The band's
+/// width"): EA d / 4 at zero strain is a phantom force, and a rope whose points sit in the band
+/// switches at every step; about 50 times the strain Newton's tolerance resolves.
+constexpr double kSlackBand = 1e-8;
 
 /// Axial force N(eps) [N] and its slope dN/deps of the rope's axial law (EA eps, or the
 /// tension-only law of docs/model.md), and the energy density psi(eps) = int N [J/m].

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# The table of docs/accuracy-vs-time.md "Slack and snatch": every scene whose rope unloads, run at
+# full order with the tension-only law (the default), at full order with the symmetric law and
+# with the default reduced rope, one after the other (read ratios within a row). Per scene one
+# Markdown row: tension-only wall s (energy-consistent steps, halved steps, energy rise), the
+# symmetric law's wall s, their ratio, the reduced run's wall s (hand-overs, full-order steps,
+# energy rise), its payload / rope RMS error against the tension-only full run (crane_sim
+# compare), and the symmetric run's payload distance from the tension-only one.
+#   scripts/slack_and_snatch.sh            (about 6 minutes on the 2-core machine)
+# CRANE_SIM overrides the binary (default build/core/crane_sim).
+set -euo pipefail
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+SIM="${CRANE_SIM:-$ROOT/build/core/crane_sim}"
+C="$ROOT/config/scenes"
+OUT="$(mktemp -d)"
+trap 'rm -rf "$OUT"' EXIT
+
+summary() { sed -n "s/^summary: .*\<$2=\([^ ]*\).*/\1/p" "$OUT/$1.log"; }
+# The largest energy above the start [J] (none of these scenes has a drive).
+rise() {
+  /usr/bin/python3 - "$OUT/$1.csv" <<'EOF'
+import csv, sys
+e = [float(r["energy"]) for r in csv.DictReader(open(sys.argv[1]))]
+print("%.2g J" % max(0.0, max(e) - e[0]))
+EOF
+}
+compare() {  # a b -> "payload / rope RMS"
+  "$SIM" compare "$OUT/$1.csv" "$OUT/$2.csv" --nodes-a "$OUT/$1_n.csv" --nodes-b "$OUT/$2_n.csv" |
+    awk -F, '/^payload_error_max/ {p = $2} /^rope_rms_max/ {r = $2} END {printf "%.2g / %.2g", p, r}'
+}
+row() {  # label scene [--set ...]
+  local label="$1" scene="$2" v
+  shift 2
+  for v in full symmetric reduced; do
+    local sets=(--set rope.model=full)
+    [ "$v" = symmetric ] && sets+=(--set rope.tension_only=false)
+    [ "$v" = reduced ] && sets=(--set rope.model=reduced)
+    "$SIM" run "$C/$scene.yaml" "$@" "${sets[@]}" --out "$OUT/$v.csv" --nodes "$OUT/${v}_n.csv" \
+      --quiet > "$OUT/$v.log" 2>&1 || echo "exit=$?" >> "$OUT/$v.log"
+  done
+  local wf ws
+  wf=$(summary full wall_s)
+  ws=$(summary symmetric wall_s)
+  printf '| %s | %s (%s, %s, %s) | %s | %s | %s (%s, %s, %s) | %s | %s |\n' "$label" "$wf" \
+    "$(summary full energy_consistent_steps)" "$(summary full halved_steps)" "$(rise full)" "$ws" \
+    "$(awk -v a="$wf" -v b="$ws" 'BEGIN{if (b > 0) printf "%.2f", a / b}')" \
+    "$(summary reduced wall_s)" "$(summary reduced hand_overs)" \
+    "$(summary reduced full_order_steps)" "$(rise reduced)" "$(compare reduced full)" \
+    "$(compare symmetric full | cut -d' ' -f1)"
+}
+
+echo "| scene | tension-only full: wall s (e-c steps, halved, rise) | symmetric full wall s | ratio | default reduced: wall s (hand-overs, full-order steps, rise) | reduced payload / rope RMS error m | symmetric vs tension-only payload m |"
+echo "| --- | --- | --- | --- | --- | --- | --- |"
+row '`rope_pendulum_chrono` (stress-free release, 60 m, 3.6 t, 120 el, 1 ms, 20 s)' \
+  rope_pendulum_chrono
+row '60 deg release, 3.6 t on 60 m from an anchor, 120 el, 1 ms, 20 s' rope_pendulum_chrono \
+  --set initial.mode=equilibrium --set initial.swing_deg=60
+row '`hard_swing_60deg` (T8036, 60 deg release, 20 s)' hard_swing_60deg
+row '40 deg release on the T8036 (`t8036_combination1`, 20 s)' t8036_combination1 \
+  --set initial.swing_deg=40 --set duration=20
+row '`hard_slack_throw` (combination 2, 12.5 t thrown up at 3 m/s, 10 s)' hard_slack_throw
+row 'falling rope (60 m, no payload, released horizontal, 120 el, 0.5 ms, 5 s)' \
+  hard_falling_rope --set rope.elements=120 --set time_step=0.0005 --set duration=5
