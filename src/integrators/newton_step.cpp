@@ -69,6 +69,7 @@ bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSe
   Eigen::VectorXd Azr, dq;
   Eigen::Vector3d dmu;
   Eigen::VectorXd rz;
+  double previous = 0.0;  // the previous correction's max |dq|, |D dz| (0: none yet)
   for (int it = 0; it < newton.max_iterations; ++it) {
     if (m > 0) {
       rz = -bh2 *
@@ -96,6 +97,11 @@ bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSe
       completeStep(ga, start, h, it + 1, s);
       return true;
     }
+    // Quadratic contraction with the next correction foreseen below the tolerance (header).
+    w.keep_matrix = newton.reuse_matrix_near_convergence && !w.keep_matrix && previous > 0.0 &&
+                    dmax <= kKeepMatrixContraction * previous &&
+                    dmax * dmax < newton.position_tolerance * previous;
+    previous = dmax;
   }
   why = at() + ": Newton did not converge in " + std::to_string(newton.max_iterations) +
         " iterations";

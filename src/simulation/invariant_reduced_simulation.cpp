@@ -71,11 +71,14 @@ HandOverSimulation::Start InvariantReducedSimulation::startReduced(const Coupled
   // A release whose axial rebound slackens the rope: the reduced steps before the slack put the
   // snatch's path off by 1 to 2 cm (docs/model.md "Hand-over to full order").
   // (Below zero by more than round-off: a stress-free rope's low point is its start's zero.)
-  const double end_weight = full_.model().end_mass * full_.rope().gravity().norm();
-  if (releaseTensionLowPoint(f) < -kLowPointRoundOff * end_weight) return Start::ringing;
+  if (releaseTensionLowPoint(f) < -kLowPointRoundOff * endWeight()) return Start::ringing;
   // Else a start the basis does not hold (a stress-free rope) comes back as soon as the
   // hand-back's tests pass: a quiet hand-over.
   return tryHandBack() ? Start::reduced : Start::outside_basis;
+}
+
+double InvariantReducedSimulation::endWeight() const {
+  return full_.model().end_mass * full_.rope().gravity().norm();
 }
 
 double InvariantReducedSimulation::releaseTensionLowPoint(const CoupledState& f) const {
@@ -194,8 +197,7 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // Not into an axial ringing that will bring the rope under kIndicatorStrainFraction of the end
   // weight: at those low points the error indicator does not look (errorTooLarge), and the
   // transverse waves they pump leave the basis (header: the forecast's floor).
-  const double end_weight = full_.model().end_mass * full_.rope().gravity().norm();
-  if (releaseTensionLowPoint(f) < kIndicatorStrainFraction * end_weight) return false;
+  if (releaseTensionLowPoint(f) < kIndicatorStrainFraction * endWeight()) return false;
   const double pe = solver_->projectionError(f.q);
   const bool firmly_taut = AncfRope::minNodalStrain(f.q) >= kFirmlyTautStrain * end_strain_;
   if (pe > (firmly_taut ? kIndicatorTolerance : kHandBackTolerance)) return false;

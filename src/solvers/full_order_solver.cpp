@@ -82,7 +82,7 @@ void FullOrderSolver::setRopeDamping(double c) {
 void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
                                double massWeight, double stiffWeight, double dampWeight,
                                const Eigen::Matrix3d& G, Eigen::VectorXd& Q,
-                               const CoupledState* from) {
+                               const CoupledState* from, bool matrix) {
   // An energy-consistent step: the damper acts at the step's midpoint (q_m, v_m), where its
   // work v_m . Q_d h = h int c EA eps'^2 dx >= 0 is a dissipation; d/dv of twice that force is
   // C_d(q_m) (v_m = (v0 + v) / 2).
@@ -93,11 +93,14 @@ void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& 
   }
   const Eigen::VectorXd& qd = from ? qm : q;
   const Eigen::VectorXd& vd = from ? vm : v;
+  if (!matrix) stiffWeight = dampWeight = 0.0;  // Q alone
   double* val = A_.valuePtr();
   const int n = rope_.dofs();
-  std::fill(val, val + A_.nonZeros(), 0.0);
-  for (std::size_t i = 0; i < mass_index_.size(); ++i)
-    val[mass_index_[i]] += massWeight * mass_value_[i];
+  if (matrix) {
+    std::fill(val, val + A_.nonZeros(), 0.0);
+    for (std::size_t i = 0; i < mass_index_.size(); ++i)
+      val[mass_index_[i]] += massWeight * mass_value_[i];
+  }
   Q.setZero(n);
   Vector12 Qe;
   Matrix12 Ke;
@@ -141,8 +144,10 @@ void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& 
     for (int i = 0; i < 6; ++i) qb(i) = qd(r[i]), vb(i) = vd(r[i]);
     rope_.rigging().dampingForce(rope_damping_, qb, vb, Qb, &Cb);
     for (int i = 0; i < 6; ++i) Q(r[i]) += Qb(i);
-    const Matrix6 Ab = stiffWeight * Kb + dampWeight * Cb;
-    for (int e = 0; e < 36; ++e) val[rigging_index_[e]] += Ab.data()[e];
+    if (matrix) {
+      const Matrix6 Ab = stiffWeight * Kb + dampWeight * Cb;
+      for (int e = 0; e < 36; ++e) val[rigging_index_[e]] += Ab.data()[e];
+    }
   }
   if (ground_) {
     // The ground on the payload point: Q -= f, and -df/dq, -df/dv in the iteration matrix (for
@@ -153,12 +158,13 @@ void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& 
                                       v.segment<3>(e))
              : ground_->force(q.segment<3>(e), v.segment<3>(e));
     Q.segment<3>(e) -= c.f;
-    if (c.df_dr.any() || c.df_dv.any()) {
+    if (matrix && (c.df_dr.any() || c.df_dv.any())) {
       const Eigen::Matrix3d Ac = -stiffWeight * c.df_dr - dampWeight * c.df_dv;
       for (int j = 0; j < 3; ++j)
         for (int i = 0; i < 3; ++i) A_.coeffRef(e + i, e + j) += Ac(i, j);
     }
   }
+  if (!matrix) return;
   for (int d = 0; d < 3; ++d) {
     A_.coeffRef(n + d, d) = 1.0;
     A_.coeffRef(d, n + d) = 1.0;
@@ -396,12 +402,12 @@ bool FullOrderSolver::generalizedAlphaStep(CoupledState& s, double h, std::strin
                                       const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
                                       Eigen::Vector3d& dmu, std::string& reason) {
     // d/dq of the damping force through v' = gamma / (beta h) dq, times beta h^2.
-    assemble(x.q, x.v, w.mass, w.stiffness, w.damping, w.G, Q);
+    assemble(x.q, x.v, w.mass, w.stiffness, w.damping, w.G, Q, nullptr, !w.keep_matrix);
     Eigen::VectorXd rhs(n + 3);
     rhs.head(n) = -w.stiffness * (M * x.qdd + Q - rope_.gravityForce());
     rhs.head<3>() -= w.stiffness * x.lambda;
     rhs.tail<3>() = rc;
-    return solveIncrement(rhs, dq, dmu, reason);
+    return solveIncrement(rhs, dq, dmu, reason, !w.keep_matrix);
   };
   return newtonStep(ga_, support_, newton_, h, increment, s, why);
 }
@@ -433,12 +439,12 @@ bool FullOrderSolver::energyConsistentStep(CoupledState& s, double h, std::strin
   const RopeIncrement increment = [&](const CoupledState& x, const NewtonWeights& w,
                                       const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
                                       Eigen::Vector3d& dmu, std::string& reason) {
-    assemble(x.q, x.v, w.mass, w.stiffness, w.damping, w.G, Q, &start);
+    assemble(x.q, x.v, w.mass, w.stiffness, w.damping, w.G, Q, &start, !w.keep_matrix);
     Eigen::VectorXd rhs(n + 3);
     rhs.head(n) = -w.stiffness * (M * x.qdd + 2.0 * Q - Qt0 - rope_.gravityForce());
     rhs.head<3>() -= w.stiffness * x.lambda;
     rhs.tail<3>() = rc;
-    return solveIncrement(rhs, dq, dmu, reason);
+    return solveIncrement(rhs, dq, dmu, reason, !w.keep_matrix);
   };
   if (!newtonStep(GeneralizedAlpha::newmark(), support_, newton_, h, increment, s, why,
                   support_.size() > 0 ? &r0z : nullptr)) {
@@ -449,8 +455,9 @@ bool FullOrderSolver::energyConsistentStep(CoupledState& s, double h, std::strin
 }
 
 bool FullOrderSolver::solveIncrement(const Eigen::VectorXd& rhs, Eigen::VectorXd& dq,
-                                     Eigen::Vector3d& dmu, std::string& reason) {
-  if (!factorizeIterationMatrix()) {
+                                     Eigen::Vector3d& dmu, std::string& reason, bool refactorize) {
+  if (!refactorize) ++matrix_reusing_corrections_;
+  if (refactorize && !factorizeIterationMatrix()) {
     reason = "singular iteration matrix";
     return false;
   }

@@ -13,6 +13,11 @@
 // G = D A_z^-1 D^T, r_q = -beta h^2 (M q'' + Q - F_g + C_q^T lambda), r_c = -(r_0 - r_p(z)),
 // r_z = -beta h^2 (M_z z'' + C_z z' + K_z z - D^T lambda).
 // Converged when max |dq|, |D dz| < position_tolerance and |C| < constraint_tolerance.
+// Once the iteration contracts quadratically (d_k / d_(k-1) <= kKeepMatrixContraction) and the
+// next correction is foreseen below the tolerance (d_k^2 / d_(k-1) < position_tolerance), the
+// last correction may reuse the previous iteration matrix (NewtonWeights::keep_matrix: the
+// residual is assembled at the new iterate, the tangent and its factorisation are not). Its
+// acceptance test is the same; where it misses, the next iteration is a full one again.
 #pragma once
 
 #include <functional>
@@ -24,10 +29,17 @@
 
 namespace crane_twin {
 
+/// The largest contraction d_k / d_(k-1) of Newton's corrections at which the next correction may
+/// reuse the iteration matrix (see above).
+constexpr double kKeepMatrixContraction = 0.1;
+
 struct NewtonSettings {
   double position_tolerance = 1e-10;    ///< [m] on max |dq| and |D dz|
   double constraint_tolerance = 1e-12;  ///< [m] on |C|
   int max_iterations = 30;
+  /// Let the last correction reuse the iteration matrix (see above); false: every correction
+  /// assembles and factorises it.
+  bool reuse_matrix_near_convergence = true;
 };
 
 /// The weights of the beta h^2-scaled iteration matrix of a step of size h.
@@ -36,6 +48,9 @@ struct NewtonWeights {
   double damping = 0.0;                         ///< gamma h
   double stiffness = 0.0;                       ///< beta h^2
   Eigen::Matrix3d G = Eigen::Matrix3d::Zero();  ///< support compliance D A_z^-1 D^T
+  /// The correction may reuse the previous iteration's factorised matrix (a solver that cannot
+  /// ignores it): assemble only the residual.
+  bool keep_matrix = false;
 };
 
 /// The rope's linear solve at the iterate s: assemble its rows of the system above with the

@@ -185,6 +185,8 @@ class InvariantReducedSimulation final : public HandOverSimulation,
  private:
   void syncFullRope();
   bool riggingSlackInTheAir() const;
+  // The end mass's weight m_end |g| [N] (the scale of the hand-over's tension tests).
+  double endWeight() const;
   // Potential energy of the swing of a full-coordinate state above the hanging rope [J].
   double swingEnergy(const CoupledState& full) const;
 

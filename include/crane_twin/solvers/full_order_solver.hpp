@@ -98,6 +98,9 @@ class FullOrderSolver {
   long halvedSteps() const { return halved_steps_; }
   /// Energy-consistent steps taken so far (slack/taut switches; 0 for a rope that stays taut).
   long energyConsistentSteps() const { return switching_.energy_consistent_steps; }
+  /// Newton corrections so far that reused the factorised iteration matrix
+  /// (NewtonSettings::reuse_matrix_near_convergence).
+  long matrixReusingCorrections() const { return matrix_reusing_corrections_; }
 
   /// Continue another solver's run of the same scene and step: the memory of its stepping (an
   /// energy-consistent episode under way, the energy balance, the rope length of its last
@@ -125,10 +128,11 @@ class FullOrderSolver {
   // elastic, plus the axial damping force at velocity v with dampWeight x C_d in A_. With
   // `from` (an energy-consistent step from that state to (q, v)): Q is the step's mean force,
   // the discrete gradient of the elastic energy plus the damping force at the midpoint, and A_
-  // holds the derivative of twice that force.
+  // holds the derivative of twice that force. With `matrix` false, Q alone (A_ untouched: a
+  // Newton correction that reuses the factorised matrix, NewtonWeights::keep_matrix).
   void assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double massWeight,
                 double stiffWeight, double dampWeight, const Eigen::Matrix3d& G, Eigen::VectorXd& Q,
-                const CoupledState* from = nullptr);
+                const CoupledState* from = nullptr, bool matrix = true);
   // Recover (dq, dz, dy) from the reduced solution x = [dq; dy] of A_ x = [r_q; r_c + D A_z^-1
   // r_z].
   Eigen::VectorXd condensedRhs(const Eigen::VectorXd& rq, const Eigen::VectorXd& rz,
@@ -144,14 +148,16 @@ class FullOrderSolver {
   // One generalized-alpha step, or one energy-consistent step (see step()).
   bool generalizedAlphaStep(CoupledState& s, double h, std::string& why);
   bool energyConsistentStep(CoupledState& s, double h, std::string& why);
-  // Factorise A_ and solve it for rhs: dq and dmu; false (reason set) where A_ is singular.
+  // Factorise A_ (unless `refactorize` is false: the last factorisation) and solve it for rhs:
+  // dq and dmu; false (reason set) where A_ is singular.
   bool solveIncrement(const Eigen::VectorXd& rhs, Eigen::VectorXd& dq, Eigen::Vector3d& dmu,
-                      std::string& reason);
+                      std::string& reason, bool refactorize = true);
   // The energy a step start -> s adds to the rope beyond the work of the top force and the
   // damper's dissipation [J] (<= 0 for a dissipative step; 0 to round-off for an
   // energy-consistent one).
   double ropeEnergyCreated(const CoupledState& start, const CoupledState& s) const;
   long halved_steps_ = 0;
+  long matrix_reusing_corrections_ = 0;
   TensionOnlySwitching switching_;  ///< the tension-only rule's memory (episode, created energy)
   double last_step_length_ = -1.0;  ///< the rope's length at the previous step() or start
   bool hoisting_ = false;           ///< the length changed since: judged by energy alone
