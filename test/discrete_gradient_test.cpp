@@ -7,8 +7,10 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "crane_twin/elements/ancf_cable_element.hpp"
+#include "crane_twin/elements/gauss_legendre.hpp"
 #include "crane_twin/rope/pendulum_rope.hpp"
 
 using namespace crane_twin;
@@ -207,5 +209,48 @@ TEST(DiscreteGradient, AxialSwitchWorkErrorIsTheTrapezoidsError) {
     const double exact = 0.5 * EA * eps1 * eps1 + EA * d * d / 6.0;
     EXPECT_NEAR(ancfAxialSwitchWorkError(EA, -1e-3, eps1), std::abs(trapezoid - exact),
                 1e-12 * exact);
+  }
+}
+
+TEST(DiscreteGradient, StepStartAtTheGaussPointsIsThePointsOwnStateAndEnergies) {
+  // The full-order step evaluates the start of its step once (ancfElementStepStart) for all its
+  // Newton iterates: each point's share must be S_x e0, S_xx e0 and the densities there, and the
+  // element's discrete gradient from it the one from e0, to the last bit.
+  std::mt19937 rng(11);
+  for (bool tension_only : {true, false}) {
+    AncfCableProperties p = cable(tension_only);
+    for (int points : {3, 5}) {
+      p.gauss_points = points;
+      // Taut at the start, slack at the end (for tension_only).
+      const Vector12 e0 = arc(2e-3, 30.0, p.length) + perturbation(rng, 1e-5);
+      const Vector12 e1 = arc(-1e-3, 25.0, p.length) + perturbation(rng, 1e-5);
+      std::vector<CablePointStepStart> start(points);
+      ancfElementStepStart(p, e0, start.data());
+      Eigen::VectorXd x, w;
+      gaussLegendre01(points, x, w);
+      for (int q = 0; q < points; ++q) {
+        const Eigen::Vector4d sx = ancfShapeDx(x(q), p.length), sxx = ancfShapeDxx(x(q), p.length);
+        Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
+        for (int k = 0; k < 4; ++k) {
+          a += sx(k) * e0.segment<3>(3 * k);
+          b += sxx(k) * e0.segment<3>(3 * k);
+        }
+        EXPECT_LT((start[q].a - a).norm(), 1e-15);
+        EXPECT_LT((start[q].b - b).norm(), 1e-12);
+        // The two densities add up to the point's energy density.
+        EXPECT_NEAR(
+            start[q].axial_energy + start[q].bending_energy,
+            ancfCableEnergyDensity(p.axial_stiffness, p.bending_stiffness, a, b, tension_only),
+            1e-9 * (start[q].axial_energy + start[q].bending_energy));
+        EXPECT_GT(start[q].axial_energy, 0.0);
+        EXPECT_GT(start[q].bending_energy, 0.0);
+      }
+      Vector12 Qa, Qb;
+      Matrix12 Ka, Kb;
+      ancfElasticForceDiscreteGradient(p, e0, e1, Qa, &Ka);
+      ancfElasticForceDiscreteGradient(p, start.data(), e1, Qb, &Kb);
+      EXPECT_EQ((Qa - Qb).cwiseAbs().maxCoeff(), 0.0);
+      EXPECT_EQ((Ka - Kb).cwiseAbs().maxCoeff(), 0.0);
+    }
   }
 }

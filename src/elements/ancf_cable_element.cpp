@@ -243,8 +243,26 @@ void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12&
   if (K && EI != 0.0) mirrorUpper(*K);
 }
 
+CablePointStepStart ancfCablePointStepStart(double EA, double EI, const Eigen::Vector3d& a0,
+                                            const Eigen::Vector3d& b0, bool tension_only) {
+  CablePointStepStart st;
+  st.a = a0;
+  st.b = b0;
+  st.axial_energy = ancfAxialEnergy(EA, a0.norm() - 1.0, tension_only);
+  if (EI != 0.0) st.bending_energy = ancfCableEnergyDensity(0.0, EI, a0, b0);
+  return st;
+}
+
 void ancfCablePointDiscreteGradient(double EA, double EI, double l, const Eigen::Vector3d& a0,
                                     const Eigen::Vector3d& b0, const Eigen::Vector3d& a1,
+                                    const Eigen::Vector3d& b1, bool hessian,
+                                    CablePointDerivatives& d, bool tension_only) {
+  ancfCablePointDiscreteGradient(EA, EI, l, ancfCablePointStepStart(EA, EI, a0, b0, tension_only),
+                                 a1, b1, hessian, d, tension_only);
+}
+
+void ancfCablePointDiscreteGradient(double EA, double EI, double l,
+                                    const CablePointStepStart& start, const Eigen::Vector3d& a1,
                                     const Eigen::Vector3d& b1, bool hessian,
                                     CablePointDerivatives& d, bool tension_only) {
   // The axial energy as a function of s = |a|^2: W(s) = psi(g - 1), W' = N / (2 g),
@@ -262,6 +280,7 @@ void ancfCablePointDiscreteGradient(double EA, double EI, double l, const Eigen:
     ancfAxialLaw(EA, g - 1.0, tension_only, N, dN);
     return (dN * g - N) / (4.0 * g * g * g);
   };
+  const Eigen::Vector3d &a0 = start.a, &b0 = start.b;
   const Eigen::Vector3d am = 0.5 * (a0 + a1), bm = 0.5 * (b0 + b1);
   // Bending: Gonzalez's midpoint gradient with its correction along dy = (da, l db).
   d = CablePointDerivatives();
@@ -270,8 +289,8 @@ void ancfCablePointDiscreteGradient(double EA, double EI, double l, const Eigen:
     const Eigen::Vector3d da = a1 - a0, db = b1 - b0;
     const double dy2 = da.squaredNorm() + l * l * db.squaredNorm();
     if (dy2 > 1e-16) {
-      const double c = (ancfCableEnergyDensity(0.0, EI, a1, b1) -
-                        ancfCableEnergyDensity(0.0, EI, a0, b0) - d.fa.dot(da) - d.fb.dot(db)) /
+      const double c = (ancfCableEnergyDensity(0.0, EI, a1, b1) - start.bending_energy -
+                        d.fa.dot(da) - d.fb.dot(db)) /
                        dy2;
       d.fa += c * da;
       d.fb += (c * l * l) * db;
@@ -279,7 +298,7 @@ void ancfCablePointDiscreteGradient(double EA, double EI, double l, const Eigen:
   }
   // Axial: the secant in s = |a|^2.
   const SquaredLengthSecant sec =
-      squaredLengthSecant(a0.squaredNorm(), a1.squaredNorm(), W, dW, ddW);
+      squaredLengthSecant(a0.squaredNorm(), start.axial_energy, a1.squaredNorm(), W, dW, ddW);
   d.fa += (2.0 * sec.slope) * am;
   if (hessian) {
     d.Paa += (2.0 * sec.slope) * Eigen::Matrix3d::Identity() +
@@ -287,8 +306,26 @@ void ancfCablePointDiscreteGradient(double EA, double EI, double l, const Eigen:
   }
 }
 
+void ancfElementStepStart(const AncfCableProperties& p, const Vector12& e0,
+                          CablePointStepStart* start) {
+  const GaussRule& gr = gaussRule(p.gauss_points);
+  for (int q = 0; q < gr.x.size(); ++q) {
+    start[q] = ancfCablePointStepStart(
+        p.axial_stiffness, p.bending_stiffness, combine(ancfShapeDx(gr.x(q), p.length), e0),
+        combine(ancfShapeDxx(gr.x(q), p.length), e0), p.tension_only);
+  }
+}
+
 void ancfElasticForceDiscreteGradient(const AncfCableProperties& p, const Vector12& e0,
                                       const Vector12& e1, Vector12& Q, Matrix12* K) {
+  CablePointStepStart start[10];
+  ancfElementStepStart(p, e0, start);
+  ancfElasticForceDiscreteGradient(p, start, e1, Q, K);
+}
+
+void ancfElasticForceDiscreteGradient(const AncfCableProperties& p,
+                                      const CablePointStepStart* start, const Vector12& e1,
+                                      Vector12& Q, Matrix12* K) {
   const GaussRule& gr = gaussRule(p.gauss_points);
   Q.setZero();
   if (K) K->setZero();
@@ -298,9 +335,9 @@ void ancfElasticForceDiscreteGradient(const AncfCableProperties& p, const Vector
     const double w = gr.w(q) * l;
     const Eigen::Vector4d sx = ancfShapeDx(gr.x(q), l);
     const Eigen::Vector4d sxx = ancfShapeDxx(gr.x(q), l);
-    ancfCablePointDiscreteGradient(p.axial_stiffness, p.bending_stiffness, l, combine(sx, e0),
-                                   combine(sxx, e0), combine(sx, e1), combine(sxx, e1),
-                                   K != nullptr, d, p.tension_only);
+    ancfCablePointDiscreteGradient(p.axial_stiffness, p.bending_stiffness, l, start[q],
+                                   combine(sx, e1), combine(sxx, e1), K != nullptr, d,
+                                   p.tension_only);
     addPoint(sx, sxx, d, w, p.bending_stiffness != 0.0, Q, K);
   }
   if (K && p.bending_stiffness != 0.0) mirrorUpper(*K);

@@ -107,9 +107,10 @@ void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& 
   const int* idx = element_index_.data();
   for (int k = 0; k < rope_.elements(); ++k, idx += 144) {
     if (from) {
-      ancfElasticForceDiscreteGradient(rope_.element(), from->q.segment<12>(6 * k),
-                                       q.segment<12>(6 * k), Qe,
-                                       stiffWeight != 0.0 ? &Ke : nullptr);
+      // The step's start at the element's Gauss points (energyConsistentStep fills them).
+      ancfElasticForceDiscreteGradient(
+          rope_.element(), &step_start_[k * rope_.element().gauss_points], q.segment<12>(6 * k), Qe,
+          stiffWeight != 0.0 ? &Ke : nullptr);
     } else {
       ancfElasticForce(rope_.element(), q.segment<12>(6 * k), Qe,
                        stiffWeight != 0.0 ? &Ke : nullptr);
@@ -428,6 +429,10 @@ bool FullOrderSolver::energyConsistentStep(CoupledState& s, double h, std::strin
   s.a = s.qdd;
   s.za = s.zdd;
   const CoupledState start = s;
+  const int points = rope_.element().gauss_points;
+  step_start_.resize(static_cast<std::size_t>(rope_.elements() * points));
+  for (int k = 0; k < rope_.elements(); ++k)
+    ancfElementStepStart(rope_.element(), start.q.segment<12>(6 * k), &step_start_[k * points]);
   Eigen::VectorXd Qt0 = rope_.gravityForce() - M * start.qdd;
   Qt0.head<3>() -= start.lambda;
   Eigen::VectorXd r0z;

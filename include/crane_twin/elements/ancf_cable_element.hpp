@@ -100,6 +100,23 @@ void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12&
 void ancfElasticForceDiscreteGradient(const AncfCableProperties& p, const Vector12& e0,
                                       const Vector12& e1, Vector12& Q, Matrix12* K = nullptr);
 
+/// The step's start at one Gauss point, the part of its discrete gradient that no Newton iterate
+/// of the step changes: a0 = S_x e0 [-], b0 = S_xx e0 [1/m] and the densities there [J/m].
+struct CablePointStepStart {
+  Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
+  double axial_energy = 0.0;    ///< psi(|a0| - 1)
+  double bending_energy = 0.0;  ///< EI/2 |a0 x b0|^2 / |a0|^6
+};
+/// The start of an element's step e0 at its p.gauss_points Gauss points, into start[0..].
+void ancfElementStepStart(const AncfCableProperties& p, const Vector12& e0,
+                          CablePointStepStart* start);
+/// ancfElasticForceDiscreteGradient from the step's start at the Gauss points
+/// (ancfElementStepStart of e0): the same Q and K, without re-evaluating the start at every
+/// Newton iterate.
+void ancfElasticForceDiscreteGradient(const AncfCableProperties& p,
+                                      const CablePointStepStart* start, const Vector12& e1,
+                                      Vector12& Q, Matrix12* K = nullptr);
+
 /// Axial strain-rate damping (Kelvin-Voigt on the axial strain, `rope.damping` = c [s]):
 ///   Q_d = int c EA eps' (d eps / d e)^T dx,  eps' = t . r_x',  t = r_x / |r_x|,
 /// dissipating int c EA eps'^2 dx >= 0 and zero for rigid motions. C_d = d Q_d / d e' =
@@ -137,6 +154,14 @@ void ancfCablePointDiscreteGradient(double EA, double EI, double l, const Eigen:
                                     const Eigen::Vector3d& b0, const Eigen::Vector3d& a1,
                                     const Eigen::Vector3d& b1, bool hessian,
                                     CablePointDerivatives& d, bool tension_only);
+/// The same from the step's start at the point (ancfCablePointStepStart).
+void ancfCablePointDiscreteGradient(double EA, double EI, double l,
+                                    const CablePointStepStart& start, const Eigen::Vector3d& a1,
+                                    const Eigen::Vector3d& b1, bool hessian,
+                                    CablePointDerivatives& d, bool tension_only);
+/// The step's start at a point (a0, b0).
+CablePointStepStart ancfCablePointStepStart(double EA, double EI, const Eigen::Vector3d& a0,
+                                            const Eigen::Vector3d& b0, bool tension_only);
 
 /// The trapezoid's work error of the tension-only axial law at one point over eps0 -> eps1 [J/m]
 /// (ancfSlackSwitchWorkError's integrand):

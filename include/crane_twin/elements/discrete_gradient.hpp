@@ -31,10 +31,11 @@ struct SquaredLengthSecant {
 /// ds.
 constexpr double kSquaredLengthSecantTiny = 1e-8;
 
-/// W, dW, ddW: callables s -> W(s), W'(s), W''(s).
+/// W0 = W(s0), given (the same at every Newton iterate of a step); W, dW, ddW: callables
+/// s -> W(s), W'(s), W''(s).
 template <class Energy, class Slope, class Curvature>
-SquaredLengthSecant squaredLengthSecant(double s0, double s1, const Energy& W, const Slope& dW,
-                                        const Curvature& ddW) {
+SquaredLengthSecant squaredLengthSecant(double s0, double W0, double s1, const Energy& W,
+                                        const Slope& dW, const Curvature& ddW) {
   SquaredLengthSecant r;
   const double ds = s1 - s0;
   if (std::abs(ds) <= kSquaredLengthSecantTiny) {
@@ -43,9 +44,16 @@ SquaredLengthSecant squaredLengthSecant(double s0, double s1, const Energy& W, c
     r.curvature = 0.5 * ddW(sm);
     return r;
   }
-  r.slope = (W(s1) - W(s0)) / ds;
+  r.slope = (W(s1) - W0) / ds;
   r.curvature = (dW(s1) - r.slope) / ds;
   return r;
+}
+
+/// The same with W(s0) evaluated here.
+template <class Energy, class Slope, class Curvature>
+SquaredLengthSecant squaredLengthSecant(double s0, double s1, const Energy& W, const Slope& dW,
+                                        const Curvature& ddW) {
+  return squaredLengthSecant(s0, W(s0), s1, W, dW, ddW);
 }
 
 }  // namespace crane_twin

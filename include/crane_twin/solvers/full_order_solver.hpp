@@ -28,6 +28,7 @@
 #include <Eigen/SparseCholesky>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "crane_twin/elements/ground_contact.hpp"
 #include "crane_twin/integrators/coupled_state.hpp"
@@ -158,6 +159,9 @@ class FullOrderSolver {
   double ropeEnergyCreated(const CoupledState& start, const CoupledState& s) const;
   long halved_steps_ = 0;
   long matrix_reusing_corrections_ = 0;
+  /// An energy-consistent step's start at every Gauss point, element by element (the part of
+  /// the discrete gradient no Newton iterate changes).
+  std::vector<CablePointStepStart> step_start_;
   TensionOnlySwitching switching_;  ///< the tension-only rule's memory (episode, created energy)
   double last_step_length_ = -1.0;  ///< the rope's length at the previous step() or start
   bool hoisting_ = false;           ///< the length changed since: judged by energy alone
