@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "crane_twin/integrators/numerical_failure.hpp"
@@ -93,6 +94,10 @@ void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& 
   }
   const Eigen::VectorXd& qd = from ? qm : q;
   const Eigen::VectorXd& vd = from ? vm : v;
+  if (from && step_start_.size() !=
+                  static_cast<std::size_t>(rope_.elements() * rope_.element().gauss_points)) {
+    throw std::logic_error("energy-consistent assembly without the step's start");
+  }
   if (!matrix) stiffWeight = dampWeight = 0.0;  // Q alone
   double* val = A_.valuePtr();
   const int n = rope_.dofs();

@@ -129,7 +129,8 @@ class FullOrderSolver {
   // elastic, plus the axial damping force at velocity v with dampWeight x C_d in A_. With
   // `from` (an energy-consistent step from that state to (q, v)): Q is the step's mean force,
   // the discrete gradient of the elastic energy plus the damping force at the midpoint, and A_
-  // holds the derivative of twice that force. With `matrix` false, Q alone (A_ untouched: a
+  // holds the derivative of twice that force (the start's share from step_start_, which
+  // energyConsistentStep fills for `from`). With `matrix` false, Q alone (A_ untouched: a
   // Newton correction that reuses the factorised matrix, NewtonWeights::keep_matrix).
   void assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double massWeight,
                 double stiffWeight, double dampWeight, const Eigen::Matrix3d& G, Eigen::VectorXd& Q,
