@@ -12,18 +12,22 @@
 namespace crane_twin {
 
 namespace {
+// The most Gauss points an element may use (AncfCableProperties::gauss_points).
+constexpr int kMaxGaussPoints = 10;
+
 // Gauss rules are computed once per point count: the element routines run in the hot loop.
 struct GaussRule {
   Eigen::VectorXd x, w;
 };
 const GaussRule& gaussRule(int n) {
   static const std::vector<GaussRule> rules = [] {
-    std::vector<GaussRule> r(11);
-    for (int k = 1; k <= 10; ++k) gaussLegendre01(k, r[k].x, r[k].w);
+    std::vector<GaussRule> r(kMaxGaussPoints + 1);
+    for (int k = 1; k <= kMaxGaussPoints; ++k) gaussLegendre01(k, r[k].x, r[k].w);
     return r;
   }();
-  if (n < 1 || n > 10) {
-    throw std::invalid_argument("gauss points must be in 1..10, got " + std::to_string(n));
+  if (n < 1 || n > kMaxGaussPoints) {
+    throw std::invalid_argument("gauss points must be in 1.." + std::to_string(kMaxGaussPoints) +
+                                ", got " + std::to_string(n));
   }
   return rules[n];
 }
@@ -318,7 +322,7 @@ void ancfElementStepStart(const AncfCableProperties& p, const Vector12& e0,
 
 void ancfElasticForceDiscreteGradient(const AncfCableProperties& p, const Vector12& e0,
                                       const Vector12& e1, Vector12& Q, Matrix12* K) {
-  CablePointStepStart start[10];
+  CablePointStepStart start[kMaxGaussPoints];
   ancfElementStepStart(p, e0, start);
   ancfElasticForceDiscreteGradient(p, start, e1, Q, K);
 }

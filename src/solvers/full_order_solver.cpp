@@ -138,17 +138,19 @@ void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& 
     const std::array<int, 6> r = rope_.riggingDofs();
     Vector6 qb, vb, Qb;
     Matrix6 Kb, Cb;
+    // Its tangents only where the matrix is assembled.
+    Matrix6* const kb = matrix ? &Kb : nullptr;
     for (int i = 0; i < 6; ++i) qb(i) = q(r[i]);
     if (from) {
       Vector6 qb0;
       for (int i = 0; i < 6; ++i) qb0(i) = from->q(r[i]);
-      rope_.rigging().discreteGradientForce(qb0, qb, Qb, &Kb);
+      rope_.rigging().discreteGradientForce(qb0, qb, Qb, kb);
     } else {
-      rope_.rigging().elasticForce(qb, Qb, &Kb);
+      rope_.rigging().elasticForce(qb, Qb, kb);
     }
     for (int i = 0; i < 6; ++i) Q(r[i]) += Qb(i);
     for (int i = 0; i < 6; ++i) qb(i) = qd(r[i]), vb(i) = vd(r[i]);
-    rope_.rigging().dampingForce(rope_damping_, qb, vb, Qb, &Cb);
+    rope_.rigging().dampingForce(rope_damping_, qb, vb, Qb, matrix ? &Cb : nullptr);
     for (int i = 0; i < 6; ++i) Q(r[i]) += Qb(i);
     if (matrix) {
       const Matrix6 Ab = stiffWeight * Kb + dampWeight * Cb;
