@@ -708,20 +708,22 @@ ReducedAgainstFull runReducedAgainstFull(const std::string& scene_name, long ste
 }  // namespace
 
 // t8036_off_centre_lift: the rope, slanted 2 m to the load, drags it before it lifts and leaves
-// waves of 0.8 to 3 mm on the swinging rope. The reduced run starts at full order (the landed
-// slanted rope's indicator, 3.3 mm) and comes back once the rope hangs firmly taut, with what
-// the basis drops under the hand-over's own 2 mm (InvariantReducedSimulation::
-// kFirmlyTautStrain): within 3 s, the payload within 1 cm of full order. With the 0.5 mm that a
-// rope near slack needs it ran all 20 s at full order.
-TEST(GroundLanding, ReducedRopeComesBackAfterAnOffCentreLiftOff) {
+// waves of 0.8 to 3 mm on the swinging rope. Its landed start, the catenary between the trolley
+// and the load with a bending layer at the hook, is not in the scene's basis (6.3e-5 m dropped,
+// the indicator 1.3 to 1.6 mm on that unloaded rope): the run adds the start's shapes to the basis
+// (InvariantReducedSimulation::kStartShapeTolerance) and carries the drag, the lift-off and the
+// swing reduced from the first step, within 1 cm of full order. On the scene's basis it began at
+// full order and came back after 2.9 s, once the rope hung firmly taut.
+TEST(GroundLanding, ReducedRopeCarriesAnOffCentreLiftFromItsLandedStart) {
   const ReducedAgainstFull r = runReducedAgainstFull("t8036_off_centre_lift", 6000);
   std::printf(
-      "off-centre lift-off: %ld hand-over(s), %ld full-order steps, payload %.3g m from "
-      "full order\n",
-      r.stats.hand_overs, r.stats.full_order_steps, r.payload);
-  EXPECT_FALSE(r.stats.integrating_full_order);
-  EXPECT_LT(r.stats.full_order_steps, 3000);
+      "off-centre lift-off: %ld hand-over(s), %ld full-order steps, payload %.3g m and rope RMS "
+      "%.3g m from full order\n",
+      r.stats.hand_overs, r.stats.full_order_steps, r.payload, r.rope_rms);
+  EXPECT_EQ(r.stats.hand_overs, 0);
+  EXPECT_EQ(r.stats.full_order_steps, 0);
   EXPECT_LT(r.payload, 0.01);
+  EXPECT_LT(r.rope_rms, 0.01);
 }
 
 // t8036_set_down: the load lands vertically, the jib springs up under the lost load and rings

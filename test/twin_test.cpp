@@ -69,6 +69,34 @@ TEST(ContinueFrom, ACopyWithTheSameStepRunsIdentically) {
   EXPECT_THROW(requireCapability<ContinuableRun>(*f).continueFrom(*p), InputError);
 }
 
+// A reduced run whose off-centre landed start added its shapes to the basis (docs/model.md
+// "Reduced rope": a landed start's shapes) is continued by a run whose own start, under the
+// trolley, kept the scene's basis (the twin's forecast continues the twin so): the copy takes
+// the adapted basis, and both run on identically through the drag and the lift-off.
+TEST(ContinueFrom, ACopyOfAnOffCentreLandedRunTakesItsBasis) {
+  const auto lift = [](const char* offset) {
+    return buildCraneModel(loadScene(kScenes + "t8036_off_centre_lift.yaml",
+                                     {"rope.elements=40", "structure.modes=20", offset}));
+  };
+  std::unique_ptr<Simulation> a = makeSimulation(lift("initial.payload_offset=[2, 0]"));
+  std::unique_ptr<Simulation> b = makeSimulation(lift("initial.payload_offset=[0, 0]"));
+  a->initialize();
+  b->initialize();
+  const auto shapes = [](const Simulation& s) {
+    return dynamic_cast<const InvariantReducedSimulation&>(s).basis().shapes();
+  };
+  ASSERT_GT(shapes(*a), shapes(*b));
+  for (int k = 0; k < 300; ++k) a->step();
+  requireCapability<ContinuableRun>(*b).continueFrom(*a);
+  EXPECT_EQ(shapes(*b), shapes(*a));
+  for (int k = 0; k < 1500; ++k) {
+    a->step();
+    b->step();
+  }
+  EXPECT_EQ(a->statistics().full_order_steps, 0);
+  EXPECT_LT((a->series().payload - b->series().payload).norm(), 1e-9);
+}
+
 TEST(SimulationCapabilities, EachRopeModelHasThoseItsTableNames) {
   // simulation_capabilities.hpp's table: continue, correct the motion, take a measured wind.
   struct Row {

@@ -134,6 +134,61 @@ InvariantRopeBasis::InvariantRopeBasis(const AncfRope& rope, const InvariantBasi
   }
 }
 
+InvariantRopeBasis InvariantRopeBasis::withShapesOf(const Eigen::VectorXd& q, const SparseMatrix& M,
+                                                    double L) const {
+  const int nodes = this->nodes(), ns = 2 * nodes;
+  const Eigen::VectorXd x = q.head(3 * ns);  // (a rigging's payload point, after, is apart)
+  const Projection projection(*this, M, L);
+  const Eigen::VectorXd r = x - expand(projection(x), L);
+  InvariantRopeBasis b = *this;
+  // Round-off of the projection of a state the basis holds: far under 1e-12 of its size.
+  if (!(r.cwiseAbs().maxCoeff() > 1e-12 * std::max(1.0, x.cwiseAbs().maxCoeff()))) return b;
+  const SparseMatrix Ms = SparseMatrix(scalarBlock(M, 0)).topLeftCorner(ns, ns);
+  const Eigen::MatrixXd P = scalarRows(L);
+  // The residual's direction c as a scalar vector (slopes d/dx, scalarRows' convention), less
+  // the translation that makes its top position zero (psi_0 = 1 carries that; every other shape
+  // is zero at the top, which the constraint rows rely on), then M_s-orthogonalised against
+  // psi_1 ... psi_(m-1) (all zero at the top) and among themselves (twice).
+  std::vector<Eigen::VectorXd> parts(3), kept;
+  double largest = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    Eigen::VectorXd& v = parts[c];
+    v.resize(ns);
+    for (int i = 0; i < ns; ++i) v(i) = r(3 * i + c);
+    for (int j = 0; j < nodes; ++j) v(2 * j) -= r(c);
+    largest = std::max(largest, std::sqrt(v.dot(Ms * v)));
+  }
+  for (Eigen::VectorXd v : parts) {
+    for (int pass = 0; pass < 2; ++pass) {
+      for (int k = 1; k < P.cols(); ++k) {
+        const Eigen::VectorXd Mu = Ms * P.col(k);
+        v -= (Mu.dot(v) / Mu.dot(P.col(k))) * P.col(k);
+      }
+      for (const Eigen::VectorXd& u : kept) v -= u.dot(Ms * v) * u;
+    }
+    const double norm = std::sqrt(v.dot(Ms * v));
+    if (!(norm > 1e-6 * largest)) continue;
+    kept.push_back(v / norm);
+  }
+  const int m0 = shapes(), m = m0 + static_cast<int>(kept.size());
+  const double le = L / (nodes - 1);
+  b.position_.conservativeResize(nodes, m);
+  b.slope_.conservativeResize(nodes, m);
+  for (int k = m0; k < m; ++k) {
+    const Eigen::VectorXd& v = kept[k - m0];
+    // (a shape of a bend may move its slopes far more than its positions)
+    double peak = 0.0;
+    for (int j = 0; j < nodes; ++j)
+      peak = std::max({peak, std::abs(v(2 * j)), le * std::abs(v(2 * j + 1))});
+    b.position_(0, k) = 0.0;  // (zero to round-off: exactly, for the constraint rows)
+    for (int j = 0; j < nodes; ++j) {
+      if (j > 0) b.position_(j, k) = v(2 * j) / peak;
+      b.slope_(j, k) = v(2 * j + 1) * L / peak;  // d/dxi
+    }
+  }
+  return b;
+}
+
 Eigen::MatrixXd InvariantRopeBasis::scalarRows(double L) const {
   const int nodes = this->nodes();
   Eigen::MatrixXd P(2 * nodes, shapes());

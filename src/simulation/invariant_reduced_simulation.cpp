@@ -47,8 +47,16 @@ InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model)
   const Scene& sc = full_.model().scene;
   // The basis of the rope at its scene length (CraneSimulation built it there); a rigging's
   // masses lumped at the hook for its shapes (InvariantReducedSolver: the rigging).
-  basis_ =
-      std::make_unique<InvariantRopeBasis>(full_.rope().lumpedAtHook(), invariantBasisSettings(sc));
+  scene_basis_ = std::make_shared<const InvariantRopeBasis>(full_.rope().lumpedAtHook(),
+                                                            invariantBasisSettings(sc));
+  useBasis(scene_basis_);
+}
+
+void InvariantReducedSimulation::useBasis(std::shared_ptr<const InvariantRopeBasis> basis) {
+  const Scene& sc = full_.model().scene;
+  // (the solver references the basis: the new one first)
+  solver_.reset();
+  basis_ = std::move(basis);
   solver_ = std::make_unique<InvariantReducedSolver>(full_.rope(), *basis_, full_.support(),
                                                      integratorFor(sc), sc.time_step);
   solver_->setRopeDamping(sc.rope.damping);
@@ -58,6 +66,16 @@ InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model)
 HandOverSimulation::Start InvariantReducedSimulation::startReduced(const CoupledState& f) {
   max_indicator_ = 0.0;
   indicator_due_ = false;
+  // A landed start's settled rope, where the scene's basis does not hold it, adds its own shapes
+  // (header: kStartShapeTolerance); a new run starts from the scene's basis.
+  if (basis_ != scene_basis_) useBasis(scene_basis_);
+  const AncfRope& start_rope = full_.rope();
+  solver_->refreshLength();  // (the start's rope: the scene's length)
+  if (withinGroundMargin(start_rope.position(f.q, start_rope.nodes() - 1)) &&
+      solver_->projectionError(f.q) > kStartShapeTolerance) {
+    useBasis(std::make_shared<const InvariantRopeBasis>(
+        scene_basis_->withShapesOf(f.q, start_rope.massMatrix(), full_.ropeLength())));
+  }
   solver_->resetSwitching();
   // A velocity given to the payload alone starts at full order, as for a lumped load (whose
   // basis refuses it): on a rigging the payload point carries it exactly, but its bar then loads
@@ -105,12 +123,14 @@ double InvariantReducedSimulation::releaseTensionLowPoint(const CoupledState& f)
 void InvariantReducedSimulation::continueFrom(const Simulation& other) {
   const auto* o = dynamic_cast<const InvariantReducedSimulation*>(&other);
   if (!o) throw InputError("continueFrom: the other run is not a reduced (invariant) rope run");
-  // (against this run's basis, not its state: a run that began at full order has no reduced
-  // state yet)
-  if (!o->full_order_ && o->state_.q.size() != solver_->coordinates()) {
+  // The other run's basis: the scene's, or the one its landed start adapted. (Against that, not
+  // its state: a run that began at full order has no reduced state yet.)
+  if (o->basis_->nodes() != basis_->nodes() ||
+      (!o->full_order_ && o->state_.q.size() != o->solver_->coordinates())) {
     throw InputError("continueFrom: the other run's basis has another size");
   }
   full_.continueFrom(o->full_);
+  if (o->basis_ != basis_) useBasis(o->basis_);
   continueHandOverFrom(*o);
   indicator_due_ = o->indicator_due_;
   if (full_order_) return;

@@ -58,6 +58,16 @@ class InvariantRopeBasis {
   const Eigen::VectorXd& transverseOmega() const { return transverse_omega_; }
   const Eigen::VectorXd& axialOmega() const { return axial_omega_; }
 
+  /// This basis with the shapes of a state q it does not hold (full coordinates at length L, M
+  /// the rope's mass matrix there): the x, y and z parts of q's residual r = q - B y_p (y_p the
+  /// M-orthogonal projection) as three scalar shapes, each M_s-orthogonal to Psi already (M = M_s
+  /// (x) I3), orthogonalised among themselves (a part under 1e-6 of the residual's norm is
+  /// dropped: a planar state adds two) and scaled to a largest node displacement or slope change
+  /// times the element length of 1 (a bend's shape may move slopes more than positions). The
+  /// result holds q exactly and stays rotation-invariant (B = Psi (x) I3). Where r is zero to
+  /// round-off, the copy is this basis.
+  InvariantRopeBasis withShapesOf(const Eigen::VectorXd& q, const SparseMatrix& M, double L) const;
+
   /// Full ANCF coordinates of y at rope length L (q = B(L) y).
   Eigen::VectorXd expand(const Eigen::VectorXd& y, double L) const;
   /// Position of node j [m]: sum_k psi_k(x_j) a_k.
