@@ -67,6 +67,14 @@ TEST(ContinueFrom, ACopyWithTheSameStepRunsIdentically) {
   f->initialize();
   EXPECT_THROW(requireCapability<ContinuableRun>(*p).continueFrom(*f), InputError);
   EXPECT_THROW(requireCapability<ContinuableRun>(*f).continueFrom(*p), InputError);
+  // Nor a reduced rope's of another mesh or rigging.
+  std::unique_ptr<Simulation> r = makeSimulation(live({"rope.model=reduced"}));
+  r->initialize();
+  for (const char* other : {"rope.elements=30", "hook.rigging_length=4"}) {
+    std::unique_ptr<Simulation> o = makeSimulation(live({"rope.model=reduced", other}));
+    o->initialize();
+    EXPECT_THROW(requireCapability<ContinuableRun>(*r).continueFrom(*o), InputError) << other;
+  }
 }
 
 // A reduced run whose off-centre landed start added its shapes to the basis (docs/model.md

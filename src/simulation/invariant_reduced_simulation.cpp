@@ -123,13 +123,11 @@ double InvariantReducedSimulation::releaseTensionLowPoint(const CoupledState& f)
 void InvariantReducedSimulation::continueFrom(const Simulation& other) {
   const auto* o = dynamic_cast<const InvariantReducedSimulation*>(&other);
   if (!o) throw InputError("continueFrom: the other run is not a reduced (invariant) rope run");
-  // The other run's basis: the scene's, or the one its landed start adapted. (Against that, not
-  // its state: a run that began at full order has no reduced state yet.)
-  if (o->basis_->nodes() != basis_->nodes() ||
-      (!o->full_order_ && o->state_.q.size() != o->solver_->coordinates())) {
-    throw InputError("continueFrom: the other run's basis has another size");
+  if (o->full_.rope().dofs() != full_.rope().dofs()) {
+    throw InputError("continueFrom: the other run's rope has other nodes or another hook rigging");
   }
   full_.continueFrom(o->full_);
+  // The other run's basis (the scene's, or the one its landed start adapted) with its state.
   if (o->basis_ != basis_) useBasis(o->basis_);
   continueHandOverFrom(*o);
   indicator_due_ = o->indicator_due_;

@@ -61,7 +61,7 @@ class InvariantRopeBasis {
   /// This basis with the shapes of a state q it does not hold (full coordinates at length L, M
   /// the rope's mass matrix there): the x, y and z parts of q's residual r = q - B y_p (y_p the
   /// M-orthogonal projection) as three scalar shapes, each M_s-orthogonal to Psi already (M = M_s
-  /// (x) I3), orthogonalised among themselves (a part under 1e-6 of the residual's norm is
+  /// (x) I3), orthogonalised among themselves (a part under 1e-6 of the largest part's norm is
   /// dropped: a planar state adds two) and scaled to a largest node displacement or slope change
   /// times the element length of 1 (a bend's shape may move slopes more than positions). The
   /// result holds q exactly and stays rotation-invariant (B = Psi (x) I3). Where r is zero to
