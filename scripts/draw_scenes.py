@@ -2,7 +2,8 @@
 """Seeded draws of scenes nobody ships, for a robustness sweep (docs/accuracy-vs-time.md,
 "Scenes nobody ships"): each draw is one of the shipped T8036 scenes of its kind with its payload,
 radius, rope length, duration, structure model, mesh, rigging and falls drawn, and what the kind
-adds (swing, friction, the load's offset, wind and gusts, a random command seed, a throw).
+adds (swing, friction, the load's offset, wind and gusts, a random command seed, a throw; `pick`
+runs the shipped pick-swing-place cycle's 70 s from a drawn radius, perhaps off-centre).
 
     scripts/draw_scenes.py SEED COUNT [--kinds hang,landed,...] > LIST
     scripts/reduced_vs_full.sh LIST 2
@@ -16,7 +17,7 @@ reports those as they come.
 import argparse
 import random
 
-KINDS = ("hang", "landed", "lower", "stress", "throw", "offset", "wind", "random")
+KINDS = ("hang", "landed", "lower", "stress", "throw", "offset", "wind", "random", "pick")
 DEFAULT_KINDS = "hang,hang,landed,lower,stress,throw"
 
 
@@ -68,6 +69,14 @@ def draw(rng, kind):
         o["wind.direction_deg"] = round(rng.uniform(0, 360))
         if rng.random() < 0.5:
             o["wind.gust.intensity"] = round(rng.uniform(0.05, 0.3), 2)
+    elif kind == "pick":  # the whole pick-swing-place cycle: lift off, hoist, slew, lower, set down
+        scene = "t8036_pick_and_place"
+        o["trolley.radius"] = round(rng.uniform(10, 45), 1)  # the cycle moves it 15 m out
+        o["ground.friction"] = round(rng.uniform(0, 1), 2)
+        if rng.random() < 0.3:
+            o["initial.payload_offset"] = "[%.1f,%.1f]" % (rng.uniform(-2, 2), rng.uniform(-2, 2))
+        o.pop("rope.length")
+        o["duration"] = 70.0
     elif kind == "random":  # seeded random operator commands
         scene = "hard_random_commands"
         o["random_commands.seed"] = rng.randrange(1000)

@@ -22,7 +22,9 @@ bool tensionOnlyStep(const TensionOnlyRope& rope, double tolerance, bool hoistin
   if (!rope.energy_consistent_step(s, h, why)) return false;
   memory.energy_created += rope.energy_created(start, s);
   ++memory.energy_consistent_steps;
-  memory.switching = !hoisting && rope.switch_work_error(start.q, s.q) > tolerance;
+  // (while hoisting too: a generalized-alpha restart after every energy-consistent step raised
+  // the energy at each, header)
+  memory.switching = rope.switch_work_error(start.q, s.q) > tolerance;
   // Leaving the episode: generalized-alpha restarts from consistent accelerations (a = q'').
   if (!memory.switching) rope.restart_accelerations(s);
   return true;

@@ -5,8 +5,10 @@
 //    0), or where that error is within `tolerance` (not asked of a hoisting step, whose uniform
 //    rescaling shifts every strain before it) and the run's created energy stays within it;
 //  - any other step is taken energy-consistently (the trapezoidal rule with the discrete
-//    gradient); the episode goes on while such a step still switches, and generalized-alpha
-//    resumes from consistent accelerations once it does not.
+//    gradient); the episode goes on while such a step still switches, hoisting or not, and
+//    generalized-alpha resumes from consistent accelerations once it does not (a restart after
+//    every switching step of a hoisting run raised the energy at each, which the hoist's pull
+//    on a bouncing rope fed: docs/model.md "Energy-consistent step").
 #pragma once
 
 #include <Eigen/Dense>
