@@ -70,5 +70,21 @@ TEST(RopeModelChoice, EachSettingBuildsTheModelItNames) {
   }
 }
 
+// An off-centre landed start adds its shapes to the basis (docs/model.md "Reduced rope": a
+// landed start's shapes): `crane_sim info` counts the coordinates the run integrates, not the
+// scene's basis alone; under the trolley nothing is added.
+TEST(RopeModelChoice, IntegratedCoordinatesCountALandedStartsShapes) {
+  for (const char* offset : {"initial.payload_offset=[2, 0]", "initial.payload_offset=[0, 0]"}) {
+    const CraneModel m = model("t8036_off_centre_lift.yaml", {"rope.model=reduced", offset});
+    InvariantReducedSimulation sim(m);
+    const int scene_basis = sim.solver().coordinates();
+    sim.initialize();
+    EXPECT_EQ(integratedRopeCoordinates(m), sim.solver().coordinates()) << offset;
+    EXPECT_EQ(sim.solver().coordinates(),
+              scene_basis + (std::string(offset).find("[2, 0]") != std::string::npos ? 6 : 0))
+        << offset;
+  }
+}
+
 }  // namespace
 }  // namespace crane_twin

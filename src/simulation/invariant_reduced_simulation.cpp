@@ -26,9 +26,11 @@ InvariantBasisSettings invariantBasisSettings(const Scene& sc) {
 }
 
 int invariantRopeCoordinates(const CraneModel& m) {
-  const AncfRope rope = sceneRope(m);
-  return InvariantRopeBasis(rope.lumpedAtHook(), invariantBasisSettings(m.scene)).coordinates() +
-         (rope.hasRigging() ? 3 : 0);
+  // The run's own start decides: the scene's basis, or one its landed start adapted
+  // (kStartShapeTolerance).
+  InvariantReducedSimulation sim(m);
+  sim.initialize();
+  return sim.solver().coordinates();
 }
 
 HandOverSettings InvariantReducedSimulation::handOverSettingsFor() {

@@ -55,7 +55,8 @@ namespace crane_twin {
 /// Basis sizes of a scene: rope.mode_count transverse modes when > 0, else the default
 /// (InvariantBasisSettings).
 InvariantBasisSettings invariantBasisSettings(const Scene& scene);
-/// Reduced coordinates (3 per shape) the scene's invariant basis has (builds the basis alone).
+/// Reduced coordinates (3 per shape, 3 more for a rigging's payload point) a run of the scene
+/// integrates: the scene's basis, or one a landed start adapted (initialises a run to see).
 int invariantRopeCoordinates(const CraneModel& model);
 
 class InvariantReducedSimulation final : public HandOverSimulation,
