@@ -50,6 +50,27 @@ ModalBasis lowestScalarModes(const SparseMatrix& K, const SparseMatrix& M, int c
   return b;
 }
 
+// Append v to `kept`, an M_s-orthonormal set, M_s-orthogonalised against it (twice) and
+// normalised, unless what is left of it is under 1e-6 of `reference` (an M_s-norm): then the set
+// already spans it.
+void appendMsOrthonormal(Eigen::VectorXd v, const SparseMatrix& Ms, double reference,
+                         std::vector<Eigen::VectorXd>& kept) {
+  for (int pass = 0; pass < 2; ++pass)
+    for (const Eigen::VectorXd& u : kept) v -= u.dot(Ms * v) * u;
+  const double norm = std::sqrt(v.dot(Ms * v));
+  if (norm > 1e-6 * reference) kept.push_back(v / norm);
+}
+
+// Shape k of `position` and `slope` (nodes x m) from the scalar vector v (positions, slopes in
+// d/dx) divided by `peak`: slopes stored in d/dxi.
+void storeShape(const Eigen::VectorXd& v, double peak, double L, int k, Eigen::MatrixXd& position,
+                Eigen::MatrixXd& slope) {
+  for (int j = 0; j < position.rows(); ++j) {
+    position(j, k) = v(2 * j) / peak;
+    slope(j, k) = v(2 * j + 1) * L / peak;
+  }
+}
+
 }  // namespace
 
 InvariantRopeBasis::InvariantRopeBasis(const AncfRope& rope, const InvariantBasisSettings& s) {
@@ -108,14 +129,9 @@ InvariantRopeBasis::InvariantRopeBasis(const AncfRope& rope, const InvariantBasi
 
   // M_s-orthogonal Gram-Schmidt (twice) of the candidates; psi_0 = 1 stays apart.
   std::vector<Eigen::VectorXd> kept;
-  for (Eigen::VectorXd v : candidates) {
+  for (const Eigen::VectorXd& v : candidates) {
     const double norm0 = std::sqrt(v.dot(Ms * v));
-    if (!(norm0 > 0.0)) continue;
-    for (int pass = 0; pass < 2; ++pass)
-      for (const Eigen::VectorXd& u : kept) v -= u.dot(Ms * v) * u;
-    const double norm = std::sqrt(v.dot(Ms * v));
-    if (!(norm > 1e-6 * norm0)) continue;
-    kept.push_back(v / norm);
+    if (norm0 > 0.0) appendMsOrthonormal(v, Ms, norm0, kept);
   }
   const int m = 1 + static_cast<int>(kept.size());
   position_.resize(nodes, m);
@@ -127,10 +143,7 @@ InvariantRopeBasis::InvariantRopeBasis(const AncfRope& rope, const InvariantBasi
     double peak = 0.0;
     for (int j = 0; j < nodes; ++j) peak = std::max(peak, std::abs(v(2 * j)));
     if (!(peak > 0.0)) peak = 1.0;
-    for (int j = 0; j < nodes; ++j) {
-      position_(j, k) = v(2 * j) / peak;
-      slope_(j, k) = v(2 * j + 1) * L / peak;  // d/dxi
-    }
+    storeShape(v, peak, L, k, position_, slope_);
   }
 }
 
@@ -144,12 +157,17 @@ InvariantRopeBasis InvariantRopeBasis::withShapesOf(const Eigen::VectorXd& q, co
   // Round-off of the projection of a state the basis holds: far under 1e-12 of its size.
   if (!(r.cwiseAbs().maxCoeff() > 1e-12 * std::max(1.0, x.cwiseAbs().maxCoeff()))) return b;
   const SparseMatrix Ms = SparseMatrix(scalarBlock(M, 0)).topLeftCorner(ns, ns);
+  // psi_1 ... psi_(m-1) (all zero at the top), M_s-normalised, then the new parts after them.
   const Eigen::MatrixXd P = scalarRows(L);
+  std::vector<Eigen::VectorXd> kept;
+  for (int k = 1; k < P.cols(); ++k)
+    kept.push_back(P.col(k) / std::sqrt(P.col(k).dot(Ms * P.col(k))));
+  const std::size_t first_new = kept.size();
   // The residual's direction c as a scalar vector (slopes d/dx, scalarRows' convention), less
   // the translation that makes its top position zero (psi_0 = 1 carries that; every other shape
-  // is zero at the top, which the constraint rows rely on), then M_s-orthogonalised against
-  // psi_1 ... psi_(m-1) (all zero at the top) and among themselves (twice).
-  std::vector<Eigen::VectorXd> parts(3), kept;
+  // is zero at the top, which the constraint rows rely on), then M_s-orthogonalised against the
+  // basis and the parts before it.
+  std::vector<Eigen::VectorXd> parts(3);
   double largest = 0.0;
   for (int c = 0; c < 3; ++c) {
     Eigen::VectorXd& v = parts[c];
@@ -158,33 +176,19 @@ InvariantRopeBasis InvariantRopeBasis::withShapesOf(const Eigen::VectorXd& q, co
     for (int j = 0; j < nodes; ++j) v(2 * j) -= r(c);
     largest = std::max(largest, std::sqrt(v.dot(Ms * v)));
   }
-  for (Eigen::VectorXd v : parts) {
-    for (int pass = 0; pass < 2; ++pass) {
-      for (int k = 1; k < P.cols(); ++k) {
-        const Eigen::VectorXd Mu = Ms * P.col(k);
-        v -= (Mu.dot(v) / Mu.dot(P.col(k))) * P.col(k);
-      }
-      for (const Eigen::VectorXd& u : kept) v -= u.dot(Ms * v) * u;
-    }
-    const double norm = std::sqrt(v.dot(Ms * v));
-    if (!(norm > 1e-6 * largest)) continue;
-    kept.push_back(v / norm);
-  }
-  const int m0 = shapes(), m = m0 + static_cast<int>(kept.size());
+  for (const Eigen::VectorXd& v : parts) appendMsOrthonormal(v, Ms, largest, kept);
+  const int m0 = shapes(), m = m0 + static_cast<int>(kept.size() - first_new);
   const double le = L / (nodes - 1);
   b.position_.conservativeResize(nodes, m);
   b.slope_.conservativeResize(nodes, m);
   for (int k = m0; k < m; ++k) {
-    const Eigen::VectorXd& v = kept[k - m0];
+    const Eigen::VectorXd& v = kept[first_new + (k - m0)];
     // (a shape of a bend may move its slopes far more than its positions)
     double peak = 0.0;
     for (int j = 0; j < nodes; ++j)
       peak = std::max({peak, std::abs(v(2 * j)), le * std::abs(v(2 * j + 1))});
+    storeShape(v, peak, L, k, b.position_, b.slope_);
     b.position_(0, k) = 0.0;  // (zero to round-off: exactly, for the constraint rows)
-    for (int j = 0; j < nodes; ++j) {
-      if (j > 0) b.position_(j, k) = v(2 * j) / peak;
-      b.slope_(j, k) = v(2 * j + 1) * L / peak;  // d/dxi
-    }
   }
   return b;
 }
