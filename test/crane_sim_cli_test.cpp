@@ -393,6 +393,37 @@ TEST(CraneSimCli, CompareComputesTheSpecMetrics) {
   EXPECT_EQ(at("cab_error_max"), 0.0);
   EXPECT_NEAR(at("tension_error_max"), 250.0, 1e-3);
   EXPECT_GT(at("tension_error_relative"), 0.0);
+  // The time of the largest payload error is the moved row's, and a window without that row sees
+  // no error.
+  double moved_t = NAN, last_t = NAN;
+  {
+    std::ifstream in(b);
+    std::string line;
+    for (int i = 0; std::getline(in, line); ++i) {
+      if (i == 0) continue;
+      const double t = std::stod(line.substr(0, line.find(',')));
+      if (i == 2) moved_t = t;
+      last_t = t;
+    }
+  }
+  ASSERT_TRUE(std::isfinite(moved_t));
+  ASSERT_GT(last_t, moved_t);
+  EXPECT_NEAR(at("payload_error_at"), moved_t, 1e-9);
+  const std::string after = std::to_string(0.5 * (moved_t + last_t));
+  const Result late = run("compare " + a + " " + b + " --from " + after);
+  ASSERT_EQ(late.status, 0) << late.out;
+  EXPECT_NE(late.out.find("payload_error_max,0\n"), std::string::npos) << late.out;
+  EXPECT_NE(late.out.find("tension_error_max,0\n"), std::string::npos) << late.out;
+  const Result upto = run("compare " + a + " " + b + " --to " + std::to_string(moved_t));
+  ASSERT_EQ(upto.status, 0) << upto.out;
+  EXPECT_NE(upto.out.find("payload_error_max,0.5"), std::string::npos) << upto.out;
+  // A window that ends before it begins, or holds no common time, is refused by name.
+  const Result bad = run("compare " + a + " " + b + " --from 1 --to 0.5");
+  EXPECT_EQ(bad.status, 2) << bad.out;
+  EXPECT_NE(bad.out.find("time window"), std::string::npos) << bad.out;
+  const Result none = run("compare " + a + " " + b + " --from 1e6");
+  EXPECT_EQ(none.status, 2) << none.out;
+  EXPECT_NE(none.out.find("no output time in"), std::string::npos) << none.out;
 }
 
 TEST(CraneSimCli, CompareRefusesMalformedCsv) {

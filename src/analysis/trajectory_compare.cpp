@@ -76,7 +76,12 @@ std::vector<Eigen::Vector3d> resampleRopeAt(const std::vector<Eigen::Vector3d>& 
   return out;
 }
 
-ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b) {
+ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b,
+                                 const TimeWindow& window) {
+  if (std::isnan(window.from) || std::isnan(window.to) || window.to < window.from) {
+    throw InputError("the comparison's time window [" + std::to_string(window.from) + ", " +
+                     std::to_string(window.to) + "] s ends before it begins or is not a number");
+  }
   std::map<long, std::size_t> bIndex;
   for (std::size_t i = 0; i < b.t.size(); ++i) bIndex[std::lround(b.t[i] * 1e9)] = i;
   const bool withNodes = !a.nodes.empty() && !b.nodes.empty();
@@ -85,10 +90,14 @@ ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b) {
   if (withNodes) m.rope_rms_max = 0.0;
   for (std::size_t i = 0; i < a.t.size(); ++i) {
     const auto it = bIndex.find(std::lround(a.t[i] * 1e9));
-    if (it == bIndex.end()) continue;
+    if (it == bIndex.end() || a.t[i] < window.from || a.t[i] > window.to) continue;
     const std::size_t j = it->second;
     ++m.common_times;
-    m.payload_max = std::max(m.payload_max, (a.payload[i] - b.payload[j]).norm());
+    const double ep = (a.payload[i] - b.payload[j]).norm();
+    if (ep > m.payload_max || m.common_times == 1) {
+      m.payload_max = ep;
+      m.payload_max_at = a.t[i];
+    }
     m.cab_max = std::max(m.cab_max, (a.cab[i] - b.cab[j]).norm());
     m.jib_tip_max = std::max(m.jib_tip_max, (a.jib_tip[i] - b.jib_tip[j]).norm());
     if (i < a.tension.size() && j < b.tension.size()) {
@@ -104,10 +113,19 @@ ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b) {
       const std::size_t n = ra.size();
       double s = 0.0;
       for (std::size_t k = 0; k < n; ++k) s += (ra[k] - rb[k]).squaredNorm();
-      m.rope_rms_max = std::max(m.rope_rms_max, std::sqrt(s / n));
+      const double rms = std::sqrt(s / n);
+      if (rms > m.rope_rms_max || m.common_times == 1) {
+        m.rope_rms_max = rms;
+        m.rope_rms_max_at = a.t[i];
+      }
     }
   }
-  if (m.common_times == 0) throw InputError("the two runs share no output time");
+  if (m.common_times == 0) {
+    const bool all = std::isinf(window.from) && std::isinf(window.to);
+    throw InputError(all ? std::string("the two runs share no output time")
+                         : "the two runs share no output time in [" + std::to_string(window.from) +
+                               ", " + std::to_string(window.to) + "] s");
+  }
   const double L = b.rope_length > 0.0 ? b.rope_length : a.rope_length;
   m.rope_length = L;
   m.payload_relative = L > 0.0 ? m.payload_max / L : 0.0;

@@ -287,12 +287,12 @@ int runStatic(const SceneArgs& a) {
 }
 
 int runCompare(const std::string& a, const std::string& b, const std::string& na,
-               const std::string& nb) {
+               const std::string& nb, const ct::TimeWindow& window) {
   if (na.empty() != nb.empty()) {
     throw ct::InputError("--nodes-a and --nodes-b go together (the rope RMS error needs both)");
   }
   const ct::ErrorMetrics m =
-      ct::compareTrajectories(ct::readTrajectory(a, na), ct::readTrajectory(b, nb));
+      ct::compareTrajectories(ct::readTrajectory(a, na), ct::readTrajectory(b, nb), window);
   std::printf("common_times,%d\n", m.common_times);
   std::printf("payload_error_max,%.9g\n", m.payload_max);
   std::printf("payload_error_relative,%.9g\n", m.payload_relative);
@@ -305,6 +305,8 @@ int runCompare(const std::string& a, const std::string& b, const std::string& na
   std::printf("jib_tip_error_max,%.9g\n", m.jib_tip_max);
   std::printf("tension_error_max,%.9g\n", m.tension_max);
   std::printf("tension_error_relative,%.9g\n", m.tension_relative);
+  std::printf("payload_error_at,%.9g\n", m.payload_max_at);
+  if (m.rope_rms_max >= 0.0) std::printf("rope_rms_at,%.9g\n", m.rope_rms_max_at);
   return 0;
 }
 
@@ -394,6 +396,9 @@ int main(int argc, char** argv) {
   cmp->add_option("b", cmpB, "time-series CSV of run B (the reference)")->required();
   cmp->add_option("--nodes-a", cmpNA, "nodes CSV of run A");
   cmp->add_option("--nodes-b", cmpNB, "nodes CSV of run B");
+  ct::TimeWindow cmpWindow;
+  cmp->add_option("--from", cmpWindow.from, "compare output times t >= FROM only [s]");
+  cmp->add_option("--to", cmpWindow.to, "compare output times t <= TO only [s]");
   SceneArgs sweepArgs;
   SweepArgs sweepOpts;
   CLI::App* sweep = app.add_subcommand(
@@ -435,7 +440,7 @@ int main(int argc, char** argv) {
     if (*modes) return runModes(modesArgs, count, part);
     if (*run) return runRun(runArgs, runOpts);
     if (*stat) return runStatic(staticArgs);
-    if (*cmp) return runCompare(cmpA, cmpB, cmpNA, cmpNB);
+    if (*cmp) return runCompare(cmpA, cmpB, cmpNA, cmpNB, cmpWindow);
     if (*sweep) return runSweep(sweepArgs, sweepOpts);
     if (*rainflow) {
       return runRainflow(rfFile, rfColumn,
