@@ -139,7 +139,10 @@ LandingRun run(const CraneModel& m, double quiet_from = 1e9) {
   r.e_start = sim->series().energy;
   r.e_max_after = -1e300;
   for (long k = 0; k <= steps; ++k) {
-    if (k > 0) sim->step();
+    if (k > 0) {
+      sim->step();
+      r.monitor.observeStep(sim->topTension());  // the factor crane_sim reports: every step's
+    }
     if (k % every != 0) continue;
     const SeriesValues v = sim->series();
     EXPECT_TRUE(std::isfinite(v.energy) && v.payload.allFinite()) << "t = " << v.t;
@@ -473,6 +476,47 @@ TEST(GroundLanding, LiftOffMonitorTakesATouchForPartOfTheLift) {
   for (int k = 750; k < 802; ++k) row(0.01 * k, false, 59.6 - 0.1 * (0.01 * k - 6.5));
   EXPECT_EQ(mon.liftOffs(), 2);
   EXPECT_NEAR(mon.lastLiftOffTime(), 7.5, 1e-9);
+}
+
+TEST(GroundLanding, LiftOffMonitorTakesTheStepsPeakBetweenRows) {
+  // Rows every 10 ms, steps every 1 ms: a crest between two rows is the lift's peak.
+  LiftOffMonitor rows_only(3.0), with_steps(3.0);
+  auto row = [&](double t, bool landed, double length, double row_tension) {
+    SeriesValues v;
+    v.t = t;
+    v.payload_landed = landed;
+    v.rope_top_tension = row_tension;
+    v.rope_length = length;
+    rows_only.observe(v, 1000.0);
+    with_steps.observe(v, 1000.0);
+  };
+  auto reeled = [](double t) { return 60.0 - 0.1 * t; };
+  for (int k = 0; k < 100; ++k) row(0.01 * k, true, reeled(0.01 * k), 900.0);  // landed to 1 s
+  for (int k = 100; k < 200; ++k) {
+    // A ringing tension whose crests (2300 N) fall between the rows (1500 N at the rows).
+    for (int j = 1; j < 10; ++j) with_steps.observeStep(j == 5 ? 2300.0 : 1500.0);
+    row(0.01 * k, false, reeled(0.01 * k), 1500.0);
+  }
+  ASSERT_EQ(rows_only.liftOffs(), 1);
+  ASSERT_EQ(with_steps.liftOffs(), 1);
+  EXPECT_DOUBLE_EQ(rows_only.factor(), 1.5);
+  EXPECT_DOUBLE_EQ(with_steps.factor(), 2.3);
+  // A peak of the steps while the load lies, before the lift-off's row, is not the lift's.
+  LiftOffMonitor landed_peak(3.0);
+  auto landed_row = [&](double t, bool landed, double tension) {
+    SeriesValues v;
+    v.t = t;
+    v.payload_landed = landed;
+    v.rope_top_tension = tension;
+    v.rope_length = reeled(t);
+    landed_peak.observe(v, 1000.0);
+  };
+  for (int k = 0; k < 100; ++k) landed_row(0.01 * k, true, 900.0);
+  landed_peak.observeStep(5000.0);  // between two landed rows
+  landed_row(1.0, true, 950.0);
+  for (int k = 101; k < 200; ++k) landed_row(0.01 * k, false, 1200.0);
+  ASSERT_EQ(landed_peak.liftOffs(), 1);
+  EXPECT_DOUBLE_EQ(landed_peak.factor(), 1.2);
 }
 
 TEST(GroundLanding, BadKeysAreRefusedWithTheKeyNamed) {

@@ -200,6 +200,7 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
       const auto t0 = std::chrono::steady_clock::now();
       sim->step();
       wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      lift_off.observeStep(sim->topTension());
       if (k % every == 0) emit();
       if (bar && (k % std::max(1L, steps / 100) == 0 || k == steps)) {
         std::fprintf(stderr, "\r[%-50s] %5.1f%%  t = %.2f s",

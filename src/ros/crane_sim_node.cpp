@@ -182,6 +182,7 @@ bool CraneSimNode::stepOnce() {
   const auto t0 = std::chrono::steady_clock::now();
   try {
     sim_->step();
+    lift_off_.observeStep(sim_->topTension());
     twin_->afterStep(*sim_, model_.scene.time_step, [this](const ros::Time& s) {
       return (s - stamp_origin_).toSec() - t_offset_;
     });

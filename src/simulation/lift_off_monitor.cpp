@@ -18,6 +18,9 @@ LiftOffMonitor::LiftOffMonitor(double window) : window_(window) {
 }
 
 void LiftOffMonitor::observe(const SeriesValues& row, double static_tension) {
+  // The row's tension and the steps' since the row before.
+  const double top_tension = std::max(row.rope_top_tension, step_peak_);
+  step_peak_ = 0.0;
   if (row.payload_landed) {
     if (!was_landed_) {
       landing_time_ = row.t;
@@ -50,7 +53,7 @@ void LiftOffMonitor::observe(const SeriesValues& row, double static_tension) {
     return;
   }
   if (static_tension > 0.0)
-    candidate_factor_ = std::max(candidate_factor_, row.rope_top_tension / static_tension);
+    candidate_factor_ = std::max(candidate_factor_, top_tension / static_tension);
   if (!confirmed_ && row.t >= candidate_time_ + kConfirmation &&
       landed_length_ - row.rope_length >= kReelIn) {
     confirmed_ = true;  // off the ground long enough: a lift, not a bounce

@@ -69,6 +69,9 @@ class HandOverSimulation : public Simulation {
   void setCommand(const CommandEntry& command) override { full_.setCommand(command); }
   double time() const override { return full_order_ ? full_.time() : reducedTime(); }
   SeriesValues series() const override;
+  double topTension() const override {
+    return full_order_ ? full_.topTension() : reducedTopTension();
+  }
   void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
               Eigen::Vector3d& jib_tip) const override;
   int ropeNodes() const override { return full_.ropeNodes(); }

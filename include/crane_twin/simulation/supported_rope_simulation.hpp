@@ -24,6 +24,7 @@ class SupportedRopeSimulation : public Simulation, public MeasuredWindInput {
  public:
   double time() const override { return state_.t; }
   SeriesValues series() const override { return seriesOf(state_); }
+  double topTension() const override { return topTensionOf(state_); }
   void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
               Eigen::Vector3d& jib_tip) const override;
   CoupledState fullState() const override { return state_; }
