@@ -307,6 +307,30 @@ TEST(CraneSimCli, LiftOffFactorIsTheStepsPeakWhateverTheOutputInterval) {
     return peak;
   };
   EXPECT_LT(row_peak(coarse_csv), 0.99 * row_peak(fine_csv));
+
+  // The tension warnings read the same peak: with the working load limit between the coarse
+  // rows' largest tension and the steps' (the rows every 1 ms are every step), the coarse run
+  // warns although none of its rows' tension_ratio is over the limit.
+  auto max_ratio = [](const std::string& path) {
+    std::string header;
+    double r = 0.0;
+    for (const std::string& row : csvRows(path, header))
+      r = std::max(r, column(header, row, "tension_ratio"));
+    return r;
+  };
+  const double rows_ratio = max_ratio(coarse_csv), steps_ratio = max_ratio(fine_csv);
+  ASSERT_LT(rows_ratio, 0.99 * steps_ratio);
+  const double safety = 2.0 / (rows_ratio + steps_ratio);  // 1 / limit halfway between
+  ASSERT_GE(safety, 1.0);
+  const std::string warned_csv = testing::TempDir() + "lift_warned.csv";
+  const Result warned =
+      run("run " + lift + sets + " --set output_interval=0.05 --set " +
+          "rope.safety_factor=" + std::to_string(safety) + " --out " + warned_csv);
+  ASSERT_EQ(warned.status, 0) << warned.out;
+  const std::size_t at = warned.out.find("warnings_seen=");
+  ASSERT_NE(at, std::string::npos) << warned.out;
+  EXPECT_TRUE(std::stoi(warned.out.substr(at + 14)) & 32) << warned.out;
+  EXPECT_LT(max_ratio(warned_csv) * safety, 1.0);
 }
 
 // static on a scene with a ground: a landed start prints itself (a rest state: the load on the

@@ -21,6 +21,7 @@
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/simulation/lift_off_monitor.hpp"
 #include "crane_twin/simulation/simulation.hpp"
+#include "crane_twin/simulation/step_tension_peak.hpp"
 #include "crane_twin/simulation/supported_rope_simulation.hpp"
 #include "crane_twin/structure/structure_support.hpp"
 
@@ -118,6 +119,7 @@ double linearLiftOffPeak(const ModalStructureSupport& s, double k, double m, dou
 
 struct LandingRun {
   LiftOffMonitor monitor;
+  StepTensionPeak peak;                     ///< the steps' top tension between the rows
   double lift_length = 0.0;                 ///< rope length at lift-off [m]
   double e_start = 0.0, e_max_after = 0.0;  ///< energy at the start; max after `quiet_from`
   double e_quiet = 0.0;                     ///< energy at the last row at or before quiet_from
@@ -141,13 +143,13 @@ LandingRun run(const CraneModel& m, double quiet_from = 1e9) {
   for (long k = 0; k <= steps; ++k) {
     if (k > 0) {
       sim->step();
-      r.monitor.observeStep(sim->topTension());  // the factor crane_sim reports: every step's
+      r.peak.addStep(sim->topTension());  // the factor crane_sim reports: every step's
     }
     if (k % every != 0) continue;
     const SeriesValues v = sim->series();
     EXPECT_TRUE(std::isfinite(v.energy) && v.payload.allFinite()) << "t = " << v.t;
     const int before = r.monitor.liftOffs();
-    r.monitor.observe(v, staticTopTension(m, v.rope_length));
+    r.monitor.observe(v, staticTopTension(m, v.rope_length), r.peak.takeAtRow(v.rope_top_tension));
     if (r.monitor.liftOffs() > before) r.lift_length = v.rope_length;
     r.max_penetration = std::max(r.max_penetration, underside - v.payload.z());
     r.max_drift = std::max(r.max_drift, (v.payload - p0).norm());
@@ -481,6 +483,7 @@ TEST(GroundLanding, LiftOffMonitorTakesATouchForPartOfTheLift) {
 TEST(GroundLanding, LiftOffMonitorTakesTheStepsPeakBetweenRows) {
   // Rows every 10 ms, steps every 1 ms: a crest between two rows is the lift's peak.
   LiftOffMonitor rows_only(3.0), with_steps(3.0);
+  StepTensionPeak peak;
   auto row = [&](double t, bool landed, double length, double row_tension) {
     SeriesValues v;
     v.t = t;
@@ -488,35 +491,26 @@ TEST(GroundLanding, LiftOffMonitorTakesTheStepsPeakBetweenRows) {
     v.rope_top_tension = row_tension;
     v.rope_length = length;
     rows_only.observe(v, 1000.0);
-    with_steps.observe(v, 1000.0);
+    with_steps.observe(v, 1000.0, peak.takeAtRow(row_tension));
   };
   auto reeled = [](double t) { return 60.0 - 0.1 * t; };
   for (int k = 0; k < 100; ++k) row(0.01 * k, true, reeled(0.01 * k), 900.0);  // landed to 1 s
-  for (int k = 100; k < 200; ++k) {
+  peak.addStep(5000.0);  // a crest while the load lies: before the lift-off's row, not the lift's
+  row(1.0, true, reeled(1.0), 950.0);
+  for (int k = 101; k < 200; ++k) {
     // A ringing tension whose crests (2300 N) fall between the rows (1500 N at the rows).
-    for (int j = 1; j < 10; ++j) with_steps.observeStep(j == 5 ? 2300.0 : 1500.0);
+    for (int j = 1; j < 10; ++j) peak.addStep(j == 5 ? 2300.0 : 1500.0);
     row(0.01 * k, false, reeled(0.01 * k), 1500.0);
   }
   ASSERT_EQ(rows_only.liftOffs(), 1);
   ASSERT_EQ(with_steps.liftOffs(), 1);
   EXPECT_DOUBLE_EQ(rows_only.factor(), 1.5);
   EXPECT_DOUBLE_EQ(with_steps.factor(), 2.3);
-  // A peak of the steps while the load lies, before the lift-off's row, is not the lift's.
-  LiftOffMonitor landed_peak(3.0);
-  auto landed_row = [&](double t, bool landed, double tension) {
-    SeriesValues v;
-    v.t = t;
-    v.payload_landed = landed;
-    v.rope_top_tension = tension;
-    v.rope_length = reeled(t);
-    landed_peak.observe(v, 1000.0);
-  };
-  for (int k = 0; k < 100; ++k) landed_row(0.01 * k, true, 900.0);
-  landed_peak.observeStep(5000.0);  // between two landed rows
-  landed_row(1.0, true, 950.0);
-  for (int k = 101; k < 200; ++k) landed_row(0.01 * k, false, 1200.0);
-  ASSERT_EQ(landed_peak.liftOffs(), 1);
-  EXPECT_DOUBLE_EQ(landed_peak.factor(), 1.2);
+  // The peak is the row's own where no step was larger, and each row starts a new interval.
+  EXPECT_DOUBLE_EQ(peak.takeAtRow(700.0), 700.0);
+  peak.addStep(800.0);
+  EXPECT_DOUBLE_EQ(peak.takeAtRow(700.0), 800.0);
+  EXPECT_DOUBLE_EQ(peak.takeAtRow(600.0), 600.0);
 }
 
 TEST(GroundLanding, BadKeysAreRefusedWithTheKeyNamed) {

@@ -21,10 +21,12 @@
 #include "crane_twin/io/csv_columns.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/simulation/crane_warnings.hpp"
 #include "crane_twin/simulation/invariant_reduced_simulation.hpp"
 #include "crane_twin/simulation/lift_off_monitor.hpp"
 #include "crane_twin/simulation/pendulum_crane_simulation.hpp"
 #include "crane_twin/simulation/simulation.hpp"
+#include "crane_twin/simulation/step_tension_peak.hpp"
 #include "crane_twin/structure/modal_analysis.hpp"
 
 namespace ct = crane_twin;
@@ -174,10 +176,13 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   // the output rows that carried it at the end; the CSV carries them in every row.
   std::map<int, long> warned;
   ct::LiftOffMonitor lift_off;
+  ct::StepTensionPeak tension_peak;  // the steps' crests between the rows
   ct::UsageCounter usage(m);
   auto emit = [&]() {
     ct::SeriesValues v = sim->series();
-    lift_off.observe(v, ct::staticTopTension(m, v.rope_length));
+    const double peak = tension_peak.takeAtRow(v.rope_top_tension);
+    lift_off.observe(v, ct::staticTopTension(m, v.rope_length), peak);
+    ct::addStepPeakTensionWarnings(m, peak, v);
     usage.observe(v, lift_off);
     v.warnings |= lift_off.warningFor(sc.hoist_design_phi2);
     if (series) ct::writeSeriesRow(series, v);
@@ -200,7 +205,7 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
       const auto t0 = std::chrono::steady_clock::now();
       sim->step();
       wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      lift_off.observeStep(sim->topTension());
+      tension_peak.addStep(sim->topTension());
       if (k % every == 0) emit();
       if (bar && (k % std::max(1L, steps / 100) == 0 || k == steps)) {
         std::fprintf(stderr, "\r[%-50s] %5.1f%%  t = %.2f s",

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/simulation/crane_warnings.hpp"
 #include "node_status.hpp"
 #include "ros_messages.hpp"
 
@@ -67,6 +68,7 @@ void CraneSimNode::restartSimulation(CommandInputs::Start start) {
   sim_->initialize();
   group_poses_ = std::make_unique<StructureGroupPoses>(sim_->support());
   lift_off_ = LiftOffMonitor();
+  tension_peak_ = StepTensionPeak();
   inputs_->attach(*sim_, model_, t_offset_, start);
   twin_->restart(model_, *sim_);
   finished_ = failed_ = false;
@@ -182,7 +184,7 @@ bool CraneSimNode::stepOnce() {
   const auto t0 = std::chrono::steady_clock::now();
   try {
     sim_->step();
-    lift_off_.observeStep(sim_->topTension());
+    tension_peak_.addStep(sim_->topTension());
     twin_->afterStep(*sim_, model_.scene.time_step, [this](const ros::Time& s) {
       return (s - stamp_origin_).toSec() - t_offset_;
     });
@@ -224,7 +226,10 @@ void CraneSimNode::publish() {
   if (const std::optional<bool> landed = twin_->loadCellLanded()) {
     s.series.payload_landed = *landed;
   }
-  lift_off_.observe(s.series, staticTopTension(model_, s.series.rope_length));
+  // The steps' crests since the last publication: the lift-off factor and the tension warnings.
+  const double peak = tension_peak_.takeAtRow(s.series.rope_top_tension);
+  lift_off_.observe(s.series, staticTopTension(model_, s.series.rope_length), peak);
+  addStepPeakTensionWarnings(model_, peak, s.series);
   usage_->observe(s.series, lift_off_, t_offset_);  // at the publication rate
   s.series.warnings |= lift_off_.warningFor(model_.scene.hoist_design_phi2);
   warnings_seen_ |= s.series.warnings;

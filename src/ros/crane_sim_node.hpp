@@ -23,6 +23,7 @@
 #include "crane_twin/simulation/lift_off_monitor.hpp"
 #include "crane_twin/simulation/pacer.hpp"
 #include "crane_twin/simulation/simulation.hpp"
+#include "crane_twin/simulation/step_tension_peak.hpp"
 #include "node_settings.hpp"
 #include "recorder_link.hpp"
 #include "ros_messages.hpp"
@@ -53,6 +54,7 @@ class CraneSimNode {
   std::vector<double> follower_t_;  ///< latest simulated time of each clock follower [s]
   CraneState last_state_;           ///< the last crane/state published
   LiftOffMonitor lift_off_;         ///< lift-offs and their dynamic factor (crane/state)
+  StepTensionPeak tension_peak_;    ///< the steps' top tension peak between publications
   /// What the run has cost the crane (crane/usage and its diagnostic status, 1 Hz).
   std::unique_ptr<UsageLink> usage_;
   /// While paused under simulated time: TF stamps step by 1 ns a publication past the frozen

@@ -17,10 +17,7 @@ LiftOffMonitor::LiftOffMonitor(double window) : window_(window) {
     throw std::invalid_argument("lift-off window must be finite and longer than the confirmation");
 }
 
-void LiftOffMonitor::observe(const SeriesValues& row, double static_tension) {
-  // The row's tension and the steps' since the row before.
-  const double top_tension = std::max(row.rope_top_tension, step_peak_);
-  step_peak_ = 0.0;
+void LiftOffMonitor::observe(const SeriesValues& row, double static_tension, double peak_tension) {
   if (row.payload_landed) {
     if (!was_landed_) {
       landing_time_ = row.t;
@@ -53,7 +50,7 @@ void LiftOffMonitor::observe(const SeriesValues& row, double static_tension) {
     return;
   }
   if (static_tension > 0.0)
-    candidate_factor_ = std::max(candidate_factor_, top_tension / static_tension);
+    candidate_factor_ = std::max(candidate_factor_, peak_tension / static_tension);
   if (!confirmed_ && row.t >= candidate_time_ + kConfirmation &&
       landed_length_ - row.rope_length >= kReelIn) {
     confirmed_ = true;  // off the ground long enough: a lift, not a bounce

@@ -14,4 +14,10 @@ namespace crane_twin {
 /// chart, rope length or radius at a limit, a command limited).
 void setCraneWarnings(const CraneModel& model, const CraneDrives& drives, SeriesValues& v);
 
+/// The tension warning bits (over the breaking force, over the working load limit) for the
+/// largest top tension of the steps since the previous row, peak_tension [N]
+/// (StepTensionPeak): a snatch's crest between two rows warns at the next row. The row's
+/// tension_ratio stays its own.
+void addStepPeakTensionWarnings(const CraneModel& model, double peak_tension, SeriesValues& v);
+
 }  // namespace crane_twin

@@ -12,14 +12,9 @@
 //             a set-down and a second lift;
 //   phi_2     = max T_top(t) / T_static over [t_lift, t_lift + window], T_static the hanging
 //               weight at that row's rope length (staticTopTension);
-// a landing inside the window ends it. T_top(t) is the largest top tension of the steps up to a
-// row since the row before it where the run reports every step (observeStep), else the row's
-// own: rows sample an undamped snatch's ringing too coarsely (a thrown 10 t lift-off on four
-// falls read 2.143 from rows every 10 ms, 2.348 from every 1 ms step; docs/model.md "Ground
-// contact").
+// a landing inside the window ends it. T_top at a row is the largest top tension of the steps
+// since the row before where the caller gives it (StepTensionPeak), else the row's own.
 #pragma once
-
-#include <algorithm>
 
 #include "crane_twin/simulation/simulation.hpp"
 
@@ -37,12 +32,13 @@ class LiftOffMonitor {
   static constexpr double kReelIn = 0.01;       ///< [m] the hoist reeled in to lift it
   /// window > kConfirmation [s] after each lift-off. Throws std::invalid_argument otherwise.
   explicit LiftOffMonitor(double window = 3.0);
-  /// One output row and the static top tension for it [N]; the row's top tension counts with
-  /// the steps' since the row before (observeStep).
-  void observe(const SeriesValues& row, double static_tension);
-  /// The top tension after one step [N] (Simulation::topTension), between the rows: its peak
-  /// counts at the next row.
-  void observeStep(double top_tension) { step_peak_ = std::max(step_peak_, top_tension); }
+  /// One output row, the static top tension for it [N] and the largest top tension of the steps
+  /// since the row before, the row's own included [N] (StepTensionPeak::takeAtRow).
+  void observe(const SeriesValues& row, double static_tension, double peak_tension);
+  /// The same with the row's own top tension for the peak.
+  void observe(const SeriesValues& row, double static_tension) {
+    observe(row, static_tension, row.rope_top_tension);
+  }
   /// Lift-offs seen so far.
   int liftOffs() const { return lift_offs_; }
   /// The largest phi_2 over the lift-offs so far (0: none yet).
@@ -77,7 +73,6 @@ class LiftOffMonitor {
   double candidate_time_ = 0.0, candidate_factor_ = 0.0;  ///< the window under way
   int lift_offs_ = 0;
   double factor_ = 0.0, last_factor_ = 0.0, last_time_ = 0.0;
-  double step_peak_ = 0.0;  ///< the largest step top tension since the last row [N]
 };
 
 }  // namespace crane_twin
