@@ -405,6 +405,13 @@ void InvariantReducedSolver::initializeAccelerations(CoupledState& s) {
 void InvariantReducedSolver::step(CoupledState& s) {
   hoisting_ = L_ != last_step_length_;
   last_step_length_ = L_;
+  if (!halves_failed_steps_) {
+    std::string why;
+    const CoupledState start = s;
+    if (tryStep(s, h_, why)) return;
+    s = start;
+    throw NumericalFailure(why);
+  }
   stepWithHalving(
       s, h_, kMaxHalvings,
       [this](CoupledState& x, double h, std::string& why) { return tryStep(x, h, why); },

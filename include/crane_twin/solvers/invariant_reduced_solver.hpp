@@ -100,10 +100,14 @@ class InvariantReducedSolver {
 
   /// Consistent accelerations of a reduced state (y, y', z, z' given).
   void initializeAccelerations(CoupledState& s);
-  /// One step of size h, halved where Newton fails (FullOrderSolver::step). Throws
-  /// NumericalFailure; s is then at the step's start.
+  /// One step of size h, halved where Newton fails (FullOrderSolver::step) unless halving is
+  /// off (setHalvesFailedSteps). Throws NumericalFailure; s is then at the step's start.
   void step(CoupledState& s);
   long halvedSteps() const { return halved_steps_; }
+  /// Whether a step whose Newton fails is halved (default) or refused at once. A run that hands
+  /// over to full order refuses it: the basis does not carry a step it cannot take whole
+  /// (InvariantReducedSimulation).
+  void setHalvesFailedSteps(bool on) { halves_failed_steps_ = on; }
   /// Steps taken by the energy-consistent step, and the energy the accepted generalized-alpha
   /// steps created at slack/taut switches (each under the switch tolerance) [J].
   long energyConsistentSteps() const { return switching_.energy_consistent_steps; }
@@ -205,6 +209,7 @@ class InvariantReducedSolver {
   NewtonSettings newton_;
   double damping_ = 0.0;
   long halved_steps_ = 0;
+  bool halves_failed_steps_ = true;
   int m_ = 0;            ///< shapes
   int n_ = 0;            ///< reduced rope coordinates: 3 m (+ 3 for a rigging's payload)
   bool rigged_ = false;  ///< a rigging bar hangs the payload point from the hook node
