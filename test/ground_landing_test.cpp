@@ -700,6 +700,53 @@ trolley: {radius: 55}
   }
 }
 
+namespace {
+// Full order and the default reduced rope side by side for `steps` steps: the largest payload
+// distance and rope RMS distance (node by node) between the two, every 10 steps, each run's
+// lift-off factor (the steps' peak, as crane_sim reports it) and the reduced run's statistics.
+struct ReducedAgainstFull {
+  double payload = 0.0, rope_rms = 0.0;
+  LiftOffMonitor full_lift, reduced_lift;
+  RunStatistics stats;
+};
+
+ReducedAgainstFull runSideBySide(const CraneModel& full, const CraneModel& reduced, long steps) {
+  std::unique_ptr<Simulation> a = makeSimulation(full), b = makeSimulation(reduced);
+  a->initialize();
+  b->initialize();
+  ReducedAgainstFull r;
+  StepTensionPeak pa, pb;
+  for (long k = 1; k <= steps; ++k) {
+    a->step();
+    b->step();
+    pa.addStep(a->topTension());
+    pb.addStep(b->topTension());
+    if (k % 10 != 0) continue;
+    const SeriesValues va = a->series(), vb = b->series();
+    r.full_lift.observe(va, staticTopTension(full, va.rope_length),
+                        pa.takeAtRow(va.rope_top_tension));
+    r.reduced_lift.observe(vb, staticTopTension(reduced, vb.rope_length),
+                           pb.takeAtRow(vb.rope_top_tension));
+    r.payload = std::max(r.payload, (va.payload - vb.payload).norm());
+    double sum = 0.0;
+    for (int j = 0; j < a->ropeNodes(); ++j) sum += (a->ropeNode(j) - b->ropeNode(j)).squaredNorm();
+    r.rope_rms = std::max(r.rope_rms, std::sqrt(sum / a->ropeNodes()));
+  }
+  r.stats = b->statistics();
+  return r;
+}
+
+// A shipped scene with `sets`, its default reduced rope against full order.
+ReducedAgainstFull runReducedAgainstFull(const std::string& scene_name, long steps,
+                                         std::vector<std::string> sets = {}) {
+  const std::string scene =
+      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/" + scene_name + ".yaml";
+  const CraneModel reduced = buildCraneModel(loadScene(scene, sets));
+  sets.push_back("rope.model=full");
+  return runSideBySide(buildCraneModel(loadScene(scene, sets)), reduced, steps);
+}
+}  // namespace
+
 // The default reduced rope carries the ground itself: a landed start and its lift-off stay
 // reduced (no step at full order), within 1 cm of full order, with the same dynamic factor; the
 // load lumped at the hook and on a rigging.
@@ -724,24 +771,10 @@ commands:
     SCOPED_TRACE(rigging);
     const CraneModel full = buildCraneModel(loadScene(scene, {"rope.model=full", rigging}));
     const CraneModel reduced = buildCraneModel(loadScene(scene, {rigging}));
-    std::unique_ptr<Simulation> a = makeSimulation(full), b = makeSimulation(reduced);
-    a->initialize();
-    b->initialize();
-    LiftOffMonitor ma, mb;
-    StepTensionPeak pa, pb;  // the factor crane_sim reports: every step's peak
-    double worst = 0.0;
-    for (long k = 1; k <= 6000; ++k) {
-      a->step();
-      b->step();
-      pa.addStep(a->topTension());
-      pb.addStep(b->topTension());
-      if (k % 10 != 0) continue;
-      const SeriesValues va = a->series(), vb = b->series();
-      ma.observe(va, staticTopTension(full, va.rope_length), pa.takeAtRow(va.rope_top_tension));
-      mb.observe(vb, staticTopTension(reduced, vb.rope_length), pb.takeAtRow(vb.rope_top_tension));
-      worst = std::max(worst, (va.payload - vb.payload).norm());
-    }
-    const RunStatistics st = b->statistics();
+    const ReducedAgainstFull r = runSideBySide(full, reduced, 6000);
+    const RunStatistics& st = r.stats;
+    const LiftOffMonitor &ma = r.full_lift, &mb = r.reduced_lift;
+    const double worst = r.payload;
     std::printf(
         "reduced lift-off: %ld full-order steps, payload %.3g m from full order, phi_2 %.4f "
         "against %.4f\n",
@@ -758,35 +791,14 @@ commands:
 // order whole. Halved at reduced order instead (before), its 4 halved steps read a lift-off
 // factor of 3.98 against full order's 2.94.
 TEST(GroundLanding, AThrownLiftOffHandsOverAtTheFirstFailedStep) {
-  const std::string scene =
-      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_pick_and_place.yaml";
-  const std::vector<std::string> sets = {
-      "structure.model=rigid", "rope.falls=4", "payload.mass=4434",
-      "trolley.radius=19",     "duration=5",   "rope.elements=30"};
-  auto model = [&](const std::string& rope) {
-    std::vector<std::string> s = sets;
-    s.push_back("rope.model=" + rope);
-    return buildCraneModel(loadScene(scene, s));
-  };
-  const CraneModel full = model("full"), reduced = model("reduced");
-  std::unique_ptr<Simulation> a = makeSimulation(full), b = makeSimulation(reduced);
-  a->initialize();
-  b->initialize();
-  LiftOffMonitor ma, mb;
-  StepTensionPeak pa, pb;
-  double worst = 0.0;
-  for (long k = 1; k <= 5000; ++k) {
-    a->step();
-    b->step();
-    pa.addStep(a->topTension());
-    pb.addStep(b->topTension());
-    if (k % 10 != 0) continue;
-    const SeriesValues va = a->series(), vb = b->series();
-    ma.observe(va, staticTopTension(full, va.rope_length), pa.takeAtRow(va.rope_top_tension));
-    mb.observe(vb, staticTopTension(reduced, vb.rope_length), pb.takeAtRow(vb.rope_top_tension));
-    worst = std::max(worst, (va.payload - vb.payload).norm());
-  }
-  const RunStatistics st = b->statistics();
+  // (the scene's rope is the default reduced one)
+  const ReducedAgainstFull r =
+      runReducedAgainstFull("t8036_pick_and_place", 5000,
+                            {"structure.model=rigid", "rope.falls=4", "payload.mass=4434",
+                             "trolley.radius=19", "duration=5", "rope.elements=30"});
+  const RunStatistics& st = r.stats;
+  const LiftOffMonitor &ma = r.full_lift, &mb = r.reduced_lift;
+  const double worst = r.payload;
   std::printf(
       "thrown lift-off: %ld hand-overs, %ld halved steps, phi_2 %.4f against %.4f, "
       "payload %.3g m from full order\n",
@@ -799,40 +811,6 @@ TEST(GroundLanding, AThrownLiftOffHandsOverAtTheFirstFailedStep) {
   EXPECT_NEAR(mb.factor(), ma.factor(), 0.02 * ma.factor());
   EXPECT_LT(worst, 0.01);
 }
-
-namespace {
-// A shipped scene run at full order and with its default reduced rope side by side for `steps`
-// steps: the largest payload distance and rope RMS distance (node by node) between the two, every
-// 10 steps, and the reduced run's statistics.
-struct ReducedAgainstFull {
-  double payload = 0.0, rope_rms = 0.0;
-  RunStatistics stats;
-};
-
-ReducedAgainstFull runReducedAgainstFull(const std::string& scene_name, long steps,
-                                         std::vector<std::string> sets = {}) {
-  const std::string scene =
-      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/" + scene_name + ".yaml";
-  const CraneModel reduced = buildCraneModel(loadScene(scene, sets));
-  sets.push_back("rope.model=full");
-  const CraneModel full = buildCraneModel(loadScene(scene, sets));
-  std::unique_ptr<Simulation> a = makeSimulation(full), b = makeSimulation(reduced);
-  a->initialize();
-  b->initialize();
-  ReducedAgainstFull r;
-  for (long k = 1; k <= steps; ++k) {
-    a->step();
-    b->step();
-    if (k % 10 != 0) continue;
-    r.payload = std::max(r.payload, (a->series().payload - b->series().payload).norm());
-    double sum = 0.0;
-    for (int j = 0; j < a->ropeNodes(); ++j) sum += (a->ropeNode(j) - b->ropeNode(j)).squaredNorm();
-    r.rope_rms = std::max(r.rope_rms, std::sqrt(sum / a->ropeNodes()));
-  }
-  r.stats = b->statistics();
-  return r;
-}
-}  // namespace
 
 // t8036_off_centre_lift: the rope, slanted 2 m to the load, drags it before it lifts and leaves
 // waves of 0.8 to 3 mm on the swinging rope. Its landed start, the catenary between the trolley
