@@ -89,7 +89,7 @@ class Simulation {
   virtual double time() const = 0;
   virtual SeriesValues series() const = 0;
   /// The rope's top tension now [N], series().rope_top_tension without the rest of the row
-  /// (cheap enough for every step: the lift-off factor's peak, LiftOffMonitor::observeStep).
+  /// (cheap enough for every step: StepTensionPeak, for the lift-off factor and the warnings).
   virtual double topTension() const = 0;
   /// Payload position and the cab / jib-tip displacements, without the energy and tension
   /// series() computes (cheap enough to sample every few steps).
