@@ -186,8 +186,8 @@ TEST(CraneSimCli, RunWritesSpecColumnsAndSummary) {
   const auto l = lines(r.out);
   ASSERT_FALSE(l.empty());
   EXPECT_TRUE(l.back().rfind("summary: wall_s=", 0) == 0) << l.back();
-  for (const char* k : {" sim_s=0.1 ", " rtf=", " steps=100 ", " subdomains=0 ",
-                        " mode_updates_s=", " lift_offs=0 ", " lift_off_factor=0"}) {
+  for (const char* k : {" sim_s=0.1 ", " rtf=", " steps=100 ", " subdomains=0 ", " mode_updates_s=",
+                        " lift_offs=0 ", " lift_off_factor=0 ", " peak_tension_ratio="}) {
     EXPECT_NE(l.back().find(k), std::string::npos) << k;
   }
   std::ifstream in(csv);
@@ -331,6 +331,16 @@ TEST(CraneSimCli, LiftOffFactorIsTheStepsPeakWhateverTheOutputInterval) {
   ASSERT_NE(at, std::string::npos) << warned.out;
   EXPECT_TRUE(std::stoi(warned.out.substr(at + 14)) & 32) << warned.out;
   EXPECT_LT(max_ratio(warned_csv) * safety, 1.0);
+
+  // The summary's peak tension ratio is the steps' too: the same for both intervals, the 1 ms
+  // rows' largest (those rows are every step), above the coarse rows'.
+  auto peak_ratio = [](const std::string& out) {
+    const std::size_t p = out.find("peak_tension_ratio=");
+    return p == std::string::npos ? NAN : std::stod(out.substr(p + 19));
+  };
+  EXPECT_EQ(peak_ratio(coarse.out), peak_ratio(fine.out)) << coarse.out << fine.out;
+  EXPECT_NEAR(peak_ratio(fine.out), steps_ratio, 1e-3 * steps_ratio);
+  EXPECT_GT(peak_ratio(coarse.out), 1.005 * rows_ratio);
 }
 
 // static on a scene with a ground: a landed start prints itself (a rest state: the load on the

@@ -177,10 +177,12 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   std::map<int, long> warned;
   ct::LiftOffMonitor lift_off;
   ct::StepTensionPeak tension_peak;  // the steps' crests between the rows
+  double peak_tension = 0.0;         // the run's largest top tension, every step [N]
   ct::UsageCounter usage(m);
   auto emit = [&]() {
     ct::SeriesValues v = sim->series();
     const double peak = tension_peak.takeAtRow(v.rope_top_tension);
+    peak_tension = std::max(peak_tension, peak);
     lift_off.observe(v, ct::staticTopTension(m, v.rope_length), peak);
     ct::addStepPeakTensionWarnings(m, peak, v);
     usage.observe(v, lift_off);
@@ -239,10 +241,12 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   std::printf(
       "summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=%d mode_updates_s=%.3g "
       "hand_overs=%ld full_order_steps=%ld warnings_seen=%d warning_rows=%s "
-      "energy_consistent_steps=%ld halved_steps=%ld lift_offs=%d lift_off_factor=%.4g\n",
+      "energy_consistent_steps=%ld halved_steps=%ld lift_offs=%d lift_off_factor=%.4g "
+      "peak_tension_ratio=%.4g\n",
       wall, simS, simS / wall, steps, stats.subdomains, stats.mode_update_seconds, stats.hand_overs,
       stats.full_order_steps, seen, rows_per_bit.empty() ? "none" : rows_per_bit.c_str(),
-      stats.energy_consistent_steps, stats.halved_steps, lift_off.liftOffs(), lift_off.factor());
+      stats.energy_consistent_steps, stats.halved_steps, lift_off.liftOffs(), lift_off.factor(),
+      peak_tension / m.rope.breaking_force);
   return 0;
 }
 
