@@ -78,9 +78,11 @@ std::vector<Eigen::Vector3d> resampleRopeAt(const std::vector<Eigen::Vector3d>& 
 
 ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b,
                                  const TimeWindow& window) {
+  const std::string window_text =
+      "[" + std::to_string(window.from) + ", " + std::to_string(window.to) + "] s";
   if (std::isnan(window.from) || std::isnan(window.to) || window.to < window.from) {
-    throw InputError("the comparison's time window [" + std::to_string(window.from) + ", " +
-                     std::to_string(window.to) + "] s ends before it begins or is not a number");
+    throw InputError("the comparison's time window " + window_text +
+                     " ends before it begins or is not a number");
   }
   std::map<long, std::size_t> bIndex;
   for (std::size_t i = 0; i < b.t.size(); ++i) bIndex[std::lround(b.t[i] * 1e9)] = i;
@@ -123,8 +125,7 @@ ErrorMetrics compareTrajectories(const Trajectory& a, const Trajectory& b,
   if (m.common_times == 0) {
     const bool all = std::isinf(window.from) && std::isinf(window.to);
     throw InputError(all ? std::string("the two runs share no output time")
-                         : "the two runs share no output time in [" + std::to_string(window.from) +
-                               ", " + std::to_string(window.to) + "] s");
+                         : "the two runs share no output time in " + window_text);
   }
   const double L = b.rope_length > 0.0 ? b.rope_length : a.rope_length;
   m.rope_length = L;
