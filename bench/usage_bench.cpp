@@ -1,6 +1,6 @@
-// The usage count's cost per output row (docs/fatigue.md "Cost"): the lift-off monitor and the
-// usage counter (four hot spots rainflow counted as the rows come) fed the rows of 20 s of the
-// pick-and-place cycle, against what crane_sim run spends per row integrating them.
+// The usage count's cost per output row and per step (docs/fatigue.md "Cost"): the lift-off
+// monitor and the usage counter (four hot spots rainflow counted as they come) fed the rows, or
+// the steps' stresses, of 20 s of the pick-and-place cycle.
 #include <benchmark/benchmark.h>
 
 #include <vector>
@@ -35,3 +35,29 @@ static void BM_UsageCountRow(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(rows.size()));
 }
 BENCHMARK(BM_UsageCountRow)->Unit(benchmark::kMicrosecond);
+
+// The usage count's share of every step (docs/fatigue.md "Cost"): the hot spots' stresses of the
+// step's state (Simulation::hotSpotStresses) fed to the rainflow count, over the 20000 steps of
+// the first 20 s of the pick-and-place cycle (the reduced rope; the states stepped once, before).
+static void BM_UsageCountStep(benchmark::State& state) {
+  const CraneModel m = buildCraneModel(loadScene(
+      std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_pick_and_place.yaml", {}));
+  std::unique_ptr<Simulation> sim = makeSimulation(m);
+  sim->initialize();
+  std::vector<Eigen::VectorXd> stresses;
+  for (int k = 0; k < 20000; ++k) {
+    sim->step();
+    stresses.push_back(sim->hotSpotStresses());
+  }
+  for (auto _ : state) {
+    UsageCounter usage(m);
+    for (int k = 0; k < 20000; ++k) {
+      benchmark::DoNotOptimize(sim->hotSpotStresses());  // the stresses' own cost
+      usage.observeStep(stresses[k]);
+    }
+    UsageReport report = usage.report();
+    benchmark::DoNotOptimize(report);
+  }
+  state.SetItemsProcessed(state.iterations() * 20000);
+}
+BENCHMARK(BM_UsageCountStep)->Unit(benchmark::kMicrosecond);

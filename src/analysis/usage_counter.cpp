@@ -128,6 +128,16 @@ void UsageCounter::observe(const SeriesValues& row, const LiftOffMonitor& lift_o
   }
 }
 
+void UsageCounter::observeStep(const Eigen::VectorXd& stresses) {
+  std::vector<RainflowCycle> closed;
+  for (std::size_t i = 0; i < counters_.size() && i < static_cast<std::size_t>(stresses.size());
+       ++i) {
+    closed.clear();
+    counters_[i].add(stresses(static_cast<Eigen::Index>(i)), closed);
+    if (!closed.empty()) closed_damage_[i] += minerDamage(closed, curves_[i]);
+  }
+}
+
 void UsageCounter::setPayloadMass(double mass) {
   payload_mass_ = mass;
   if (last_from_this_count_ && std::isnan(lifts_.back().set_down)) lifts_.back().mass = mass;

@@ -208,6 +208,7 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
       sim->step();
       wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       tension_peak.addStep(sim->topTension());
+      usage.observeStep(sim->hotSpotStresses());  // the stresses' crests between the rows
       if (k % every == 0) emit();
       if (bar && (k % std::max(1L, steps / 100) == 0 || k == steps)) {
         std::fprintf(stderr, "\r[%-50s] %5.1f%%  t = %.2f s",

@@ -185,6 +185,7 @@ bool CraneSimNode::stepOnce() {
   try {
     sim_->step();
     tension_peak_.addStep(sim_->topTension());
+    usage_->observeStep(sim_->hotSpotStresses());  // the stresses' crests between publications
     twin_->afterStep(*sim_, model_.scene.time_step, [this](const ros::Time& s) {
       return (s - stamp_origin_).toSec() - t_offset_;
     });

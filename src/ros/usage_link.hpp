@@ -36,6 +36,8 @@ class UsageLink {
   void restart(const CraneModel& model);
   /// One published state (row) after `lift_off` saw it; `time_offset` as UsageCounter's.
   void observe(const SeriesValues& row, const LiftOffMonitor& lift_off, double time_offset);
+  /// One time step's hot-spot stresses (UsageCounter::observeStep).
+  void observeStep(const Eigen::VectorXd& stresses) { counter_->observeStep(stresses); }
   void setPayloadMass(double mass) { counter_->setPayloadMass(mass); }
   /// Publish crane/usage stamped `stamp`, append the usage status (named after `node_name`) to
   /// `diagnostics`, and write the file when its period is up.

@@ -1,5 +1,6 @@
-// What a run costs the crane (docs/fatigue.md "Usage"), from its output rows: the lifts (a
-// lift-off as LiftOffMonitor confirms it, to the next set-down), each with the lifted mass
+// What a run costs the crane (docs/fatigue.md "Usage"), from its output rows (and its steps'
+// stresses between them): the lifts (a lift-off as LiftOffMonitor confirms it, to the next
+// set-down), each with the lifted mass
 // (the model's payload), its dynamic factor phi_2 and its times; over the run the number of
 // lifts n, the load spectrum factor k_Q = sum (m_i / m_max)^3 / n (m_max the crane file's
 // max_load) and its class Q, the class U of n and of the lifts projected over the crane file's
@@ -84,6 +85,11 @@ class UsageCounter {
   /// the monitor's times (a node's simulation that started again after a load change: its
   /// monitor's count starts again from 0 too); the times so shifted must not go back.
   void observe(const SeriesValues& row, const LiftOffMonitor& lift_off, double time_offset = 0.0);
+  /// The hot spots' stresses of one time step between the rows [Pa] (Simulation::
+  /// hotSpotStresses): the rainflow count takes the crests the rows miss. The row after the
+  /// step repeats its last values, a plateau that counts once. Throws std::invalid_argument for
+  /// a non-finite stress.
+  void observeStep(const Eigen::VectorXd& stresses);
   /// The payload from now on [kg] (~set_payload, or a twin's load cell), the lift under way
   /// included.
   void setPayloadMass(double mass);

@@ -91,6 +91,10 @@ class Simulation {
   /// The rope's top tension now [N], series().rope_top_tension without the rest of the row
   /// (cheap enough for every step: StepTensionPeak, for the lift-off factor and the warnings).
   virtual double topTension() const = 0;
+  /// The crane file's hot spots' stresses now [Pa], series().stresses without the rest of the
+  /// row (cheap enough for every step: the usage count's rainflow, docs/fatigue.md "Usage");
+  /// empty without hot spots.
+  virtual Eigen::VectorXd hotSpotStresses() const = 0;
   /// Payload position and the cab / jib-tip displacements, without the energy and tension
   /// series() computes (cheap enough to sample every few steps).
   virtual void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
