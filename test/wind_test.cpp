@@ -15,6 +15,7 @@
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/simulation/simulation.hpp"
 #include "crane_twin/simulation/supported_rope_simulation.hpp"
+#include "crane_twin/structure/structure_support.hpp"
 
 using namespace crane_twin;
 
@@ -96,6 +97,69 @@ TEST(Wind, StructuresStaticResponseIsTheDirectSolveOfKuEqualsF) {
       "full %.2e, 100 modes %.2e relative\n",
       Fy / 1e3, tip.x(), tip.y(), tip.z(), (full - tip).norm() / tip.norm(),
       (modal - tip).norm() / tip.norm());
+}
+
+TEST(Wind, StructuresLoadPatternsGiveTheMembersLoadAtAnySlewingAngleAndWind) {
+  // structureWindPatterns: P w(v) against the pass over the members, for the scene's profile
+  // and a uniform one, a scene wind and a measured one, at slewing angles all round.
+  const CraneModel m = buildCraneModel(loadScene(kScenes + "t8036_wind.yaml", {"duration=0.1"}));
+  const TowerCraneStructure& st = *m.structure;
+  const double jib = 60.0;
+  for (double alpha : {m.scene.wind->profile_exponent, 0.0, 0.3}) {
+    WindSettings ws = *m.scene.wind;
+    ws.profile_exponent = alpha;
+    const StructureWindPatterns p = structureWindPatterns(st, alpha, jib);
+    // Members share their axes: a lattice has few directions.
+    ASSERT_GT(p.axes.size(), 3u);
+    EXPECT_LT(p.axes.size(), st.members.size() / 4) << p.axes.size() << " axes";
+    if (alpha == 0.0) std::printf("%zu members on %zu axes\n", st.members.size(), p.axes.size());
+    for (int measured = 0; measured < 2; ++measured) {
+      WindField w(ws, jib);
+      if (measured) w.setMeasured(Eigen::Vector3d(-7.5, 11.0, 0.0));
+      for (double theta : {0.0, 0.37, 1.9, -2.6, 3.1}) {
+        const Eigen::VectorXd f = structureWindLoad(st, w, theta);
+        const Eigen::Vector3d v = slewRotation(theta).transpose() * w.meanVelocity(jib);
+        const Eigen::VectorXd g = p.patterns * structureWindWeights(p, v);
+        ASSERT_GT(f.norm(), 0.0);
+        EXPECT_LT((g - f).norm(), 1e-12 * f.norm())
+            << "alpha " << alpha << " measured " << measured << " theta " << theta;
+      }
+    }
+  }
+  EXPECT_THROW(structureWindPatterns(st, -0.1, jib), std::invalid_argument);
+  EXPECT_THROW(structureWindPatterns(st, 0.14, 0.0), std::invalid_argument);
+}
+
+TEST(Wind, ASlewingCranesStructureLoadIsTheMembersAtItsAngle) {
+  // The simulation's external load while it slews in wind: T^T f(theta), f the members' drag at
+  // the drives' slewing angle of the step (unit gust), for the full structure (T = I) and the
+  // modal one (T = Phi).
+  for (const char* model : {"full", "modal"}) {
+    SCOPED_TRACE(model);
+    const CraneModel m = buildCraneModel(
+        loadScene(kScenes + "t8036_slew90.yaml",
+                  {"duration=1", "rope.elements=10", "rope.model=pendulum", "wind.speed=14",
+                   "wind.direction_deg=75", "wind.gust.intensity=0",
+                   std::string("structure.model=") + model}));
+    std::unique_ptr<Simulation> sim = makeSimulation(m);
+    sim->initialize();
+    const WindField w(*m.scene.wind, windJibHeight(m));
+    const auto* support = dynamic_cast<const StructureSupportBase*>(&sim->support());
+    ASSERT_NE(support, nullptr);
+    double turned = 0.0;
+    for (int k = 0; k < 400; ++k) {
+      sim->step();
+      if (k % 50 != 49) continue;
+      const double theta = sim->drives().slewAngle();
+      turned = std::max(turned, std::abs(theta - m.scene.slew_angle));
+      Eigen::VectorXd f = structureWindLoad(*m.structure, w, theta);
+      if (m.structure_modal_basis && m.scene.structure_model == StructureModel::modal)
+        f = m.structure_modal_basis->phi.transpose() * f;
+      ASSERT_EQ(support->externalLoad().size(), f.size());
+      EXPECT_LT((support->externalLoad() - f).norm(), 1e-12 * f.norm()) << "t " << sim->time();
+    }
+    EXPECT_GT(turned, 0.01);  // it slewed
+  }
 }
 
 TEST(Wind, ReducedRopeFollowsTheFullOrderOneInWindOnAFlexibleCrane) {

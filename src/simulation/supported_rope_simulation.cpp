@@ -96,8 +96,9 @@ void SupportedRopeSimulation::setMeasuredWind(const Eigen::Vector3d& v) {
 }
 
 // Rope and payload loads from the wind at the rope's mid-height and the payload's (the trolley
-// point less half and all of the hanging length); the structure's from its members, built at
-// unit gust (g = 1) for the current slewing angle and scaled by g(t)^2 (u is proportional to g).
+// point less half and all of the hanging length); the structure's from its members' load
+// patterns, weighted at unit gust (g = 1) for the current slewing angle and mean wind, and
+// scaled by g(t)^2 (u is proportional to g).
 void SupportedRopeSimulation::updateWind(double t, const Eigen::VectorXd& z, bool record) {
   if (!wind_) return;
   const double top =
@@ -110,11 +111,22 @@ void SupportedRopeSimulation::updateWind(double t, const Eigen::VectorXd& z, boo
       ropeWindLoad(*wind_, t, top - 0.5 * L, sc.rope.falls, ropeDiameter(sc.rope.mass_per_length)),
       payloadWindLoad(*wind_, t, top - L));
   if (model_.structure && support_->size() > 0) {
-    const double theta = drives_.slewAngle();
-    if (structure_wind_stale_ || theta != wind_theta_) {
-      // At unit gust: the load with g = 1 (the steady mean, or the measured wind).
-      support_->setExternalLoad(structureWindLoad(*model_.structure, *wind_, theta));
-      wind_theta_ = theta;
+    // The load P w(v) of structureWindPatterns: the patterns once per profile, the weights
+    // when the mean wind at the jib height in the slewing frame, v, changes (slewing, a new
+    // measured wind); at unit gust (g = 1).
+    const double jib = windJibHeight(model_);
+    const double alpha = wind_->settings().profile_exponent;
+    if (!wind_patterns_ || alpha != wind_patterns_exponent_) {
+      wind_patterns_ = structureWindPatterns(*model_.structure, alpha, jib);
+      wind_patterns_exponent_ = alpha;
+      support_->setExternalLoadPatterns(wind_patterns_->patterns);
+      structure_wind_stale_ = true;
+    }
+    const Eigen::Vector3d v =
+        slewRotation(drives_.slewAngle()).transpose() * wind_->meanVelocity(jib);
+    if (structure_wind_stale_ || v != wind_v_) {
+      support_->setExternalLoadWeights(structureWindWeights(*wind_patterns_, v));
+      wind_v_ = v;
       structure_wind_stale_ = false;
     }
     const double g = wind_->gustFactor(t);

@@ -117,6 +117,32 @@ void StructureSupportBase::setExternalLoad(const Eigen::VectorXd& f) {
   external_ = modes_.size() > 0 ? Eigen::VectorXd(modes_.transpose() * f) : f;
 }
 
+void StructureSupportBase::setExternalLoadPatterns(const Eigen::SparseMatrix<double>& P) {
+  if (P.cols() > 0 && P.rows() != structure_.free_dofs) {
+    throw std::invalid_argument("external load patterns: need " +
+                                std::to_string(structure_.free_dofs) + " rows");
+  }
+  if (modes_.size() > 0) {
+    modal_patterns_ = P.cols() > 0 ? Eigen::MatrixXd(P.transpose() * modes_).transpose()
+                                   : Eigen::MatrixXd(size(), 0);
+    patterns_.resize(0, 0);
+  } else {
+    patterns_ = P;
+    modal_patterns_.resize(0, 0);
+  }
+  if (P.cols() == 0) external_.resize(0);
+}
+
+void StructureSupportBase::setExternalLoadWeights(const Eigen::VectorXd& w) {
+  const Eigen::Index columns = modes_.size() > 0 ? modal_patterns_.cols() : patterns_.cols();
+  if (w.size() != columns || !w.allFinite()) {
+    throw std::invalid_argument("external load weights: need " + std::to_string(columns) +
+                                " finite values");
+  }
+  external_ =
+      modes_.size() > 0 ? Eigen::VectorXd(modal_patterns_ * w) : Eigen::VectorXd(patterns_ * w);
+}
+
 // T^T f = -(theta'' T^T M r_theta + theta'^2 T^T M c).
 Eigen::VectorXd StructureSupportBase::slewingLoad() const {
   if (euler_.size() == 0) return Eigen::VectorXd::Zero(size());

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <Eigen/Dense>
+#include <Eigen/Sparse>
 
 namespace crane_twin {
 
@@ -58,6 +59,12 @@ class RopeSupport {
   /// Scale s of that load (the gust: s = g(t)^2), so a load that only changes in size is not
   /// projected again.
   virtual void setExternalLoadScale(double /*s*/) {}
+  /// The external load as a combination of fixed free-DOF load patterns (the columns of P,
+  /// slewing frame): P is taken to the support's coordinates once here (structureWindPatterns),
+  /// then setExternalLoadWeights(w) sets the load P w, a small product per change of w. An empty
+  /// P removes the patterns. No effect without structural coordinates.
+  virtual void setExternalLoadPatterns(const Eigen::SparseMatrix<double>& /*patterns*/) {}
+  virtual void setExternalLoadWeights(const Eigen::VectorXd& /*w*/) {}
   /// Displacement of the cab and jib-tip reference points from the undeformed structure,
   /// slewing frame [m] (docs/cli.md cab_d*, jib_tip_d*); zero for an anchor.
   virtual Eigen::Vector3d cabDisplacement(const Eigen::VectorXd& z) const = 0;

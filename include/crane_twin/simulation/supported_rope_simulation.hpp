@@ -13,6 +13,7 @@
 #include "crane_twin/drives/crane_drives.hpp"
 #include "crane_twin/integrators/coupled_state.hpp"
 #include "crane_twin/loads/wind_field.hpp"
+#include "crane_twin/loads/wind_loads.hpp"
 #include "crane_twin/rope/rope_support.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/simulation/simulation.hpp"
@@ -149,9 +150,17 @@ class SupportedRopeSimulation : public Simulation, public MeasuredWindInput {
   CoupledState state_;
   std::optional<WindField> wind_;
   double wind_3s_ = 0.0;
-  double wind_theta_ = 0.0;           ///< slewing angle of the structure's unit wind load
-  bool structure_wind_stale_ = true;  ///< the wind changed since that load was built
+  /// The structure's wind load patterns (structureWindPatterns) for the profile exponent
+  /// wind_patterns_exponent_, given to the support; built once per exponent.
+  std::optional<StructureWindPatterns> wind_patterns_;
+  double wind_patterns_exponent_ = 0.0;
+  Eigen::Vector3d wind_v_ = Eigen::Vector3d::Zero();  ///< v of the weights last set [m/s]
+  bool structure_wind_stale_ = true;  ///< the wind changed since those weights were set
 };
+
+/// The height the wind's jib figures refer to [m]: the trolley rail's at the crane's largest
+/// radius, or the anchor's without a crane (WindField's jib height).
+double windJibHeight(const CraneModel& m);
 
 /// The rope's support for a scene: FixedAnchor (crane: none: the anchor), RigidTrolleySupport
 /// (structure.model: rigid), ModalStructureSupport or FullStructureSupport. Throws InputError

@@ -52,6 +52,11 @@ class StructureSupportBase : public RopeSupport {
   /// T^T f of an external free-DOF load f (an empty f removes it).
   void setExternalLoad(const Eigen::VectorXd& free_dof_force) override;
   void setExternalLoadScale(double s) override { external_scale_ = s; }
+  /// T^T P, dense for modal coordinates (a few hundred numbers per pattern), P itself for T = I.
+  void setExternalLoadPatterns(const Eigen::SparseMatrix<double>& patterns) override;
+  /// external load = (T^T P) w. Throws std::invalid_argument for a w of another size than P's
+  /// columns or not finite.
+  void setExternalLoadWeights(const Eigen::VectorXd& w) override;
   /// The external load in the support's coordinates (empty when none).
   const Eigen::VectorXd& externalLoad() const { return external_; }
   Eigen::Vector3d point(const Eigen::VectorXd& z) const override { return r0_ + D_ * z; }
@@ -78,6 +83,9 @@ class StructureSupportBase : public RopeSupport {
   Eigen::Matrix<double, 3, Eigen::Dynamic> D_, cab_, tip_;
   Eigen::VectorXd euler_, centrifugal_;  ///< T^T M r_theta, T^T M c (empty: loads off)
   Eigen::VectorXd external_;             ///< T^T f of the external load (empty: none)
+  /// The load patterns in the coordinates: T^T P (modal) or P (T = I); none: 0 columns.
+  Eigen::MatrixXd modal_patterns_;
+  Eigen::SparseMatrix<double> patterns_;
   double external_scale_ = 1.0;
   double slew_rate_ = 0.0, slew_acceleration_ = 0.0;
 };
