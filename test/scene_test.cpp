@@ -7,6 +7,8 @@
 #include <fstream>
 
 #include "crane_twin/io/config_reader.hpp"
+#include "crane_twin/io/input_error.hpp"
+#include "crane_twin/simulation/crane_model.hpp"
 
 using namespace crane_twin;
 
@@ -102,6 +104,42 @@ TEST(Scene, OutOfRangeIsRefused) {
                 {p, "rope.subdomain_frame", "fixed, corotational", "rotating"});
   expectRefused(p, {"rope.subdomain_rotation=0"}, {p, "rope.subdomain_rotation", "0"});
   expectRefused(p, {"time_step=2"}, {p, "time_step", "duration"});
+  // Finite but beyond any crane: refused by name, not left to overflow or a numerical failure.
+  expectRefused(p, {"duration=1e200"}, {p, "duration", "1e12 steps"});
+  expectRefused(p, {"gravity=1e200"}, {p, "gravity", "[0, 100]"});
+  expectRefused(p, {"rope.mass_per_length=1e4"}, {p, "rope.mass_per_length", "(0, 100]"});
+  expectRefused(p, {"rope.damping=2"}, {p, "rope.damping", "[0, 1]"});
+  expectRefused(p, {"rope.bending_stiffness=1e12"}, {p, "rope.bending_stiffness"});
+  expectRefused(p, {"wind={speed: 1e200}"}, {p, "wind.speed", "[0, 120]"});
+  expectRefused(p, {"wind={speed: 10, payload: {area: 1e200}}"}, {p, "wind.payload.area"});
+  expectRefused(p, {"initial.mode=equilibrium", "initial.payload_velocity=[0, 0, 1e3]"},
+                {p, "initial.payload_velocity", "50 m/s"});
+  const std::string lift = kScenes + "t8036_lift_off_fast.yaml";
+  expectRefused(lift, {"initial.payload_offset=[1e200, 0]"},
+                {lift, "initial.payload_offset", "1e+200 m", "rope.length", "cannot reach"});
+  expectRefused(lift, {"ground.stiffness=1e200"}, {lift, "ground.stiffness", "(0, 1e+14]"});
+}
+
+TEST(Scene, AHangingWeightNoRopeHoldsIsRefusedNamingItsLargestShare) {
+  // W / (n EA) above kMaxStaticStrain (the T8036's rope: 2.2e7 N per fall, 2 falls here).
+  const std::string c = kScenes + "t8036_operator_cycle.yaml";
+  auto refused = [&](const std::vector<std::string>& sets, const std::string& key) {
+    try {
+      buildCraneModel(loadScene(c, sets));
+      FAIL() << ::testing::PrintToString(sets);
+    } catch (const InputError& e) {
+      const std::string w = e.what();
+      EXPECT_NE(w.find("key '" + key + "'"), std::string::npos) << w;
+      EXPECT_NE(w.find("no steel wire rope holds that"), std::string::npos) << w;
+    }
+  };
+  refused({"payload.mass=1e6"}, "payload.mass");
+  refused({"hook.mass=1e6"}, "hook.mass");
+  refused({"rope.mass_per_length=99", "rope.axial_stiffness=1e5", "payload.mass=0"},
+          "rope.mass_per_length");
+  // Just under the bound: 10 % of 4.4e7 N is 4.49e5 kg at g = 9.81 (less the hook and rope).
+  EXPECT_NO_THROW(buildCraneModel(loadScene(c, {"payload.mass=4e5", "duration=0.1"})));
+  refused({"payload.mass=4e5", "rope.falls=1"}, "payload.mass");  // one fall: 18 %
 }
 
 TEST(Scene, SubdomainKeysAreRefusedWhereTheDefaultReducedRopeRuns) {

@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 #include <random>
+#include <sstream>
 #include <utility>
 
 #include "crane_twin/io/config_reader.hpp"
@@ -15,6 +16,19 @@
 namespace crane_twin {
 
 namespace {
+
+// The most steps a scene may ask for (duration / time_step): a count a run's step counter and
+// its summary hold (1e12 steps of 1 ms are 32 years).
+constexpr double kMaxSteps = 1e12;
+// The fastest initial payload velocity a scene may give, per component [m/s].
+constexpr double kMaxPayloadSpeed = 50.0;
+
+// A number as a message shows it (1e+200, 65.52: six significant digits).
+std::string shown(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
 
 // Each model choice's values with the scene file's word for it (docs/scenes.md); the argument
 // only picks the choice.
@@ -133,6 +147,10 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   s.duration = root.number("duration", std::nullopt, Bounds::positive());
   s.time_step = root.number("time_step", std::nullopt, Bounds::positive());
   if (s.time_step > s.duration) root.fail("time_step", "must not exceed duration");
+  if (s.duration / s.time_step > kMaxSteps) {
+    root.fail("duration",
+              "asks for more than 1e12 steps of time_step (" + shown(s.time_step) + " s)");
+  }
   s.output_interval = root.number("output_interval", 0.01, Bounds::positive());
   if (s.output_interval < s.time_step * (1.0 - 1e-9)) {
     root.fail("output_interval", "must be at least time_step");
@@ -176,11 +194,12 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     r.subdomain_frame = n.string("subdomain_frame", "fixed", {"fixed", "corotational"});
     r.subdomain_rotation = n.number("subdomain_rotation", 0.1, Bounds::closed(1e-4, 1.0));
     r.tension_only = n.boolean("tension_only", true);
-    r.damping = n.number("damping", 0.0, Bounds::nonNegative());
-    r.mass_per_length = n.number("mass_per_length", def.mass_per_length, Bounds::positive());
+    // (1 s damps every axial mode of a crane rope far beyond critical; 100 kg/m is a 130 mm rope)
+    r.damping = n.number("damping", 0.0, Bounds::closed(0.0, 1.0));
+    r.mass_per_length = n.number("mass_per_length", def.mass_per_length, {0.0, 100.0, true, false});
     r.axial_stiffness = n.number("axial_stiffness", def.axial_stiffness, Bounds::positive());
     r.bending_stiffness =
-        n.number("bending_stiffness", def.bending_stiffness, Bounds::nonNegative());
+        n.number("bending_stiffness", def.bending_stiffness, Bounds::closed(0.0, 1e8));
     r.breaking_force = n.number("breaking_force", def.breaking_force, Bounds::positive());
     r.safety_factor = n.number("safety_factor", 5.0, Bounds::closed(1.0, 100.0));
     r.reeving_length = n.number("reeving_length", 0.0, Bounds::closed(0.0, 5000.0));
@@ -270,10 +289,19 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     s.swing_deg = n.number("swing_deg", 0.0, Bounds::closed(0.0, 180.0));
     s.swing_azimuth_deg = n.number("swing_azimuth_deg", 0.0, Bounds::any());
     s.payload_velocity = n.vec3("payload_velocity", Eigen::Vector3d::Zero());
+    if (!(s.payload_velocity.cwiseAbs().maxCoeff() <= kMaxPayloadSpeed)) {
+      n.fail("payload_velocity", "must be at most " + shown(kMaxPayloadSpeed) +
+                                     " m/s in each component (a load thrown at 180 km/h)");
+    }
     if (n.has("payload_offset")) {
       if (s.initial_mode != InitialMode::landed)
         n.fail("payload_offset", "only used with mode: landed");
       s.payload_offset = n.vec2("payload_offset");
+      const double off = std::hypot(s.payload_offset.x(), s.payload_offset.y());
+      if (!(off < s.rope.length)) {
+        n.fail("payload_offset", "lies " + shown(off) + " m off, not less than rope.length (" +
+                                     shown(s.rope.length) + " m): the rope cannot reach");
+      }
     }
     if (s.initial_mode == InitialMode::landed) {
       for (const char* k : {"swing_deg", "swing_azimuth_deg", "payload_velocity"}) {
@@ -293,11 +321,12 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
       n.fail("swing_deg", "must be below 90 for an equilibrium start (use mode: stress_free)");
     }
   }
-  s.gravity = root.number("gravity", 9.81, Bounds::nonNegative());
+  s.gravity = root.number("gravity", 9.81, Bounds::closed(0.0, 100.0));
   if (root.has("wind")) {
     ConfigNode n = root.map("wind");
     WindSettings w;
-    w.speed = n.number("speed", std::nullopt, Bounds::nonNegative());
+    // (above any wind measured at the ground: 113 m/s)
+    w.speed = n.number("speed", std::nullopt, Bounds::closed(0.0, 120.0));
     w.direction_deg = n.number("direction_deg", 0.0, Bounds::closed(-360.0, 360.0));
     w.profile_exponent = n.number("profile_exponent", 0.14, Bounds::closed(0.0, 1.0));
     if (n.has("gust")) {
@@ -309,7 +338,8 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     {
       // Default area: the payload drawn as a cube of 1000 kg/m^3 (docs/ros.md markers).
       ConfigNode p = n.map("payload");
-      w.payload_area = p.number("area", payloadCubeFaceArea(s.payload_mass), Bounds::nonNegative());
+      w.payload_area =
+          p.number("area", payloadCubeFaceArea(s.payload_mass), Bounds::closed(0.0, 1e4));
       w.payload_drag_coefficient = p.number("drag_coefficient", 1.05, Bounds::closed(0.0, 5.0));
       p.finish();
     }
@@ -340,7 +370,8 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     ConfigNode n = root.map("ground");
     GroundSettings g;
     g.height = n.number("height", 0.0, Bounds::any());
-    g.stiffness = n.number("stiffness", 1e8, Bounds::positive());
+    // (concrete under a load's footprint is some 1e9 to 1e10 N/m)
+    g.stiffness = n.number("stiffness", 1e8, {0.0, 1e14, true, false});
     g.damping_ratio = n.number("damping_ratio", 1.0, Bounds::closed(0.0, 10.0));
     g.friction = n.number("friction", 0.5, Bounds::closed(0.0, 2.0));
     n.finish();

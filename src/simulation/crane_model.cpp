@@ -1,7 +1,9 @@
 #include "crane_twin/simulation/crane_model.hpp"
 
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <utility>
 
@@ -43,6 +45,27 @@ void setRopeAndLoad(CraneModel& m) {
   m.rope.reeving_equivalent_length = scene.rope.reeving_length / n;
   m.end_mass = scene.payload_mass + (scene.hasRigging() ? 0.0 : scene.hookBlockMass());
   m.hook_mass = scene.hasRigging() ? scene.hookBlockMass() : 0.0;
+  // The static strain at the rope's top, W / (n EA), W the hanging weight: beyond
+  // kMaxStaticStrain no steel wire rope holds it (they break at 1 to 3 %), and the static
+  // solve would fail or mean nothing.
+  const double weight =
+      (m.end_mass + m.hook_mass + m.rope.mass_per_length * scene.rope.length) * scene.gravity;
+  const double strain = weight / m.rope.axial_stiffness;
+  if (!(strain <= kMaxStaticStrain)) {
+    char what[512];
+    std::snprintf(what, sizeof what,
+                  "the hanging weight, %.4g N at the rope's top, stretches the rope by %.3g %% "
+                  "(n EA = %.4g N on %d falls); no steel wire rope holds that (they break at 1 "
+                  "to 3 %%): at most %g %% is taken (payload.mass, hook.mass, "
+                  "rope.mass_per_length, rope.axial_stiffness, rope.falls and gravity set it)",
+                  weight, 100.0 * strain, m.rope.axial_stiffness, n, 100.0 * kMaxStaticStrain);
+    // (the key of the largest share of the weight)
+    const double rope_mass = m.rope.mass_per_length * scene.rope.length;
+    const char* key = scene.hookBlockMass() > std::max(scene.payload_mass, rope_mass) ? "hook.mass"
+                      : rope_mass > scene.payload_mass ? "rope.mass_per_length"
+                                                       : "payload.mass";
+    throw InputError(scene.file + ": key '" + key + "': " + what);
+  }
 }
 
 // The modes every simulation of the model needs (makeRopeSupport).

@@ -87,6 +87,15 @@ struct CraneModel {
   Eigen::Vector3d gravityVector() const { return Eigen::Vector3d(0.0, 0.0, -scene.gravity); }
 };
 
+/// The largest static strain at the rope's top a model is built for, W / (n EA) with W the
+/// hanging weight (end mass, hook block and hanging rope): several times the strain a steel
+/// wire rope breaks at (1 to 3 %); beyond it the scene is refused naming the key of the
+/// largest share of the weight (payload.mass, hook.mass or rope.mass_per_length).
+constexpr double kMaxStaticStrain = 0.1;
+
+/// The model of a scene: the crane's structure (its modes and hot spots), the equivalent rope
+/// and the masses at its end. Throws InputError naming the key for a structure that buckles
+/// (structure.geometric_stiffness) and for a hanging weight beyond kMaxStaticStrain.
 CraneModel buildCraneModel(const Scene& scene);
 
 /// The model of `scene`, which differs from model.scene only in its load, pose, initial state
