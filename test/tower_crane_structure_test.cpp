@@ -4,7 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "crane_twin/io/config_reader.hpp"
 #include "crane_twin/structure/modal_analysis.hpp"
@@ -145,5 +149,40 @@ TEST(TowerCraneStructure, BoomNotOnSlewingUnitIsRefused) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("jib.width"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+  }
+}
+
+TEST(TowerCraneStructure, FiguresBeyondAnyCraneAreRefusedByName) {
+  // A mistyped exponent in the crane file: refused naming the key and the bound, where before
+  // the mesh or the solver failed without naming anything (a 1e200 Pa modulus: CHOLMOD; a
+  // 1e200 m mast: a beam orientation parallel to its axis; a 1e200 kg lumped mass: the static
+  // solve).
+  std::ifstream in(kCrane);
+  std::stringstream buf;
+  buf << in.rdbuf();
+  const std::string text = buf.str();
+  const std::vector<std::array<std::string, 3>> cases = {
+      {"youngs_modulus: 2.06e11", "youngs_modulus: 2.06e200", "material.youngs_modulus"},
+      {"density: 7850.0", "density: 7850e200", "material.density"},
+      {"  height: 65.0", "  height: 65e200", "mast.height"},
+      {"  panel: 1.5 ", "  panel: 1.5e-200 ", "mast.panel"},
+      {"chord: [0.273, 0.025]", "chord: [0.273e200, 0.025]", "mast.chord"},
+      {"mass: 32600.0", "mass: 32600e200", "lumped_masses[0].mass"},
+      {"axial_stiffness: 2.2e7", "axial_stiffness: 2.2e200", "rope.axial_stiffness"},
+  };
+  for (const auto& [from, to, key] : cases) {
+    std::string t = text;
+    const auto pos = t.find(from);
+    ASSERT_NE(pos, std::string::npos) << from;
+    t.replace(pos, from.size(), to);
+    const std::string path = ::testing::TempDir() + "/beyond_any_crane.yaml";
+    std::ofstream(path) << t;
+    try {
+      loadCraneDescription(path);
+      FAIL() << "expected InputError for " << to;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("'" + key + "'"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("must be in"), std::string::npos) << e.what();
+    }
   }
 }

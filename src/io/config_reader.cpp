@@ -7,12 +7,13 @@
 
 namespace crane_twin {
 
-namespace {
-std::string fmt(double v) {
+std::string shownNumber(double v) {
   std::ostringstream s;
   s << v;
   return s.str();
 }
+
+namespace {
 std::string shown(const YAML::Node& n) {
   if (!n.IsDefined() || n.IsNull()) return "nothing";
   std::ostringstream s;
@@ -28,11 +29,11 @@ std::string shown(const YAML::Node& n) {
 std::string Bounds::describe() const {
   const bool hasLo = std::isfinite(lo), hasHi = std::isfinite(hi);
   if (hasLo && hasHi) {
-    return std::string("in ") + (lo_open ? "(" : "[") + fmt(lo) + ", " + fmt(hi) +
+    return std::string("in ") + (lo_open ? "(" : "[") + shownNumber(lo) + ", " + shownNumber(hi) +
            (hi_open ? ")" : "]");
   }
-  if (hasLo) return std::string(lo_open ? "> " : ">= ") + fmt(lo);
-  if (hasHi) return std::string(hi_open ? "< " : "<= ") + fmt(hi);
+  if (hasLo) return std::string(lo_open ? "> " : ">= ") + shownNumber(lo);
+  if (hasHi) return std::string(hi_open ? "< " : "<= ") + shownNumber(hi);
   return "a finite number";
 }
 
@@ -180,7 +181,7 @@ double ConfigNode::number(const std::string& key, std::optional<double> def, Bou
   } catch (const YAML::Exception&) {
     fail(key, "must be a number, got " + shown(n));
   }
-  if (!b.contains(v)) fail(key, "must be " + b.describe() + ", got " + fmt(v));
+  if (!b.contains(v)) fail(key, "must be " + b.describe() + ", got " + shownNumber(v));
   return v;
 }
 
@@ -254,7 +255,8 @@ std::vector<double> ConfigNode::numberList(const std::string& key, std::size_t s
       fail(key, "must be " + want + ", got " + shown(n));
     }
     if (!b.contains(out[i])) {
-      fail(key, "entry " + std::to_string(i) + " must be " + b.describe() + ", got " + fmt(out[i]));
+      fail(key, "entry " + std::to_string(i) + " must be " + b.describe() + ", got " +
+                    shownNumber(out[i]));
     }
   }
   return out;

@@ -10,18 +10,29 @@ namespace crane_twin {
 
 namespace {
 
+// Bounds beyond any tower crane, so that a mistyped figure is refused by name instead of
+// meshing a structure that overflows or fails numerically: lengths up to 1000 m, panels from
+// 0.1 m, tubes up to 10 m across, moduli up to 1e13 Pa (diamond's is 1.2e12), densities up to
+// 1e5 kg/m^3 (osmium's is 22590), masses up to 1e7 kg; the rope as the scene's rope.* keys.
+const Bounds kLength{0.0, 1000.0, true, false};
+const Bounds kPanel = Bounds::closed(0.1, 1000.0);
+const Bounds kTube{0.0, 10.0, true, false};
+const Bounds kModulus{0.0, 1e13, true, false};
+const Bounds kDensity{0.0, 1e5, true, false};
+const Bounds kMass{0.0, 1e7, true, false};
+
 TubeSpec readTube(ConfigNode& parent, const std::string& key) {
-  const auto v = parent.numberList(key, 2, Bounds::positive());
+  const auto v = parent.numberList(key, 2, kTube);
   if (2.0 * v[1] > v[0]) parent.fail(key, "wall thickness must be at most half the diameter");
   return {v[0], v[1]};
 }
 
 LatticeBoomSpec readBoom(ConfigNode n) {
   LatticeBoomSpec b;
-  b.length = n.number("length", std::nullopt, Bounds::positive());
-  b.width = n.number("width", std::nullopt, Bounds::positive());
-  b.height = n.number("height", std::nullopt, Bounds::positive());
-  b.panel = n.number("panel", std::nullopt, Bounds::positive());
+  b.length = n.number("length", std::nullopt, kLength);
+  b.width = n.number("width", std::nullopt, kLength);
+  b.height = n.number("height", std::nullopt, kLength);
+  b.panel = n.number("panel", std::nullopt, kPanel);
   if (b.panel > b.length) n.fail("panel", "must not exceed length");
   b.chord_segments = n.integer("chord_segments", 1, 1, 8);
   b.top_chord = readTube(n, "top_chord");
@@ -53,16 +64,16 @@ CraneDescription loadCraneDescription(const std::string& path) {
   c.name = root.string("name", std::nullopt);
   {
     ConfigNode m = root.map("material", true);
-    c.E = m.number("youngs_modulus", std::nullopt, Bounds::positive());
-    c.G = m.number("shear_modulus", std::nullopt, Bounds::positive());
-    c.density = m.number("density", std::nullopt, Bounds::positive());
+    c.E = m.number("youngs_modulus", std::nullopt, kModulus);
+    c.G = m.number("shear_modulus", std::nullopt, kModulus);
+    c.density = m.number("density", std::nullopt, kDensity);
     m.finish();
   }
   {
     ConfigNode m = root.map("mast", true);
-    c.mast_height = m.number("height", std::nullopt, Bounds::positive());
-    c.mast_width = m.number("width", std::nullopt, Bounds::positive());
-    c.mast_panel = m.number("panel", std::nullopt, Bounds::positive());
+    c.mast_height = m.number("height", std::nullopt, kLength);
+    c.mast_width = m.number("width", std::nullopt, kLength);
+    c.mast_panel = m.number("panel", std::nullopt, kPanel);
     if (c.mast_panel > c.mast_height) m.fail("panel", "must not exceed height");
     c.mast_chord = readTube(m, "chord");
     c.mast_diagonal = readTube(m, "diagonal");
@@ -71,7 +82,7 @@ CraneDescription loadCraneDescription(const std::string& path) {
   }
   {
     ConfigNode m = root.map("slewing_unit", true);
-    c.slewing_height = m.number("height", std::nullopt, Bounds::positive());
+    c.slewing_height = m.number("height", std::nullopt, kLength);
     c.slewing_member = readTube(m, "member");
     c.cab_position = m.vec3("cab_position", std::nullopt);
     m.finish();
@@ -83,14 +94,13 @@ CraneDescription loadCraneDescription(const std::string& path) {
                                   {"counter_jib", &c.counter_jib}}) {
     if (std::abs(boom->width - c.mast_width) > 1e-9) {
       throw InputError(path + ": key '" + key + ".width': must equal mast.width (" +
-                       std::to_string(c.mast_width) +
-                       " m): the boom root sits on the slewing unit");
+                       shownNumber(c.mast_width) + " m): the boom root sits on the slewing unit");
     }
   }
   for (ConfigNode m : root.mapList("lumped_masses")) {
     LumpedMassSpec l;
     l.name = m.string("name", std::nullopt);
-    l.mass = m.number("mass", std::nullopt, Bounds::positive());
+    l.mass = m.number("mass", std::nullopt, kMass);
     l.position = m.vec3("position", std::nullopt);
     l.nodes = m.integer("nodes", 1, 1, 8);
     m.finish();
@@ -121,10 +131,10 @@ CraneDescription loadCraneDescription(const std::string& path) {
   c.design_hours = root.number("design_hours", 0.0, Bounds::nonNegative());
   {
     ConfigNode m = root.map("trolley", true);
-    c.trolley_mass = m.number("trolley_mass", std::nullopt, Bounds::nonNegative());
-    c.hook_block_mass = m.number("hook_block_mass", std::nullopt, Bounds::nonNegative());
-    c.min_radius = m.number("min_radius", std::nullopt, Bounds::positive());
-    c.max_radius = m.number("max_radius", std::nullopt, Bounds::positive());
+    c.trolley_mass = m.number("trolley_mass", std::nullopt, Bounds::closed(0.0, kMass.hi));
+    c.hook_block_mass = m.number("hook_block_mass", std::nullopt, Bounds::closed(0.0, kMass.hi));
+    c.min_radius = m.number("min_radius", std::nullopt, kLength);
+    c.max_radius = m.number("max_radius", std::nullopt, kLength);
     if (c.min_radius >= c.max_radius) m.fail("min_radius", "must be below max_radius");
     if (c.max_radius > c.mast_width / 2 + c.jib.length) {
       m.fail("max_radius", "lies beyond the jib tip");
@@ -143,8 +153,8 @@ CraneDescription loadCraneDescription(const std::string& path) {
     c.slewing = readDrive(m.map("slewing", true));
     c.trolley = readDrive(m.map("trolley", true));
     c.hoist = readDrive(m.map("hoist", true));
-    c.min_rope_length = m.number("min_rope_length", std::nullopt, Bounds::positive());
-    c.max_rope_length = m.number("max_rope_length", std::nullopt, Bounds::positive());
+    c.min_rope_length = m.number("min_rope_length", std::nullopt, kLength);
+    c.max_rope_length = m.number("max_rope_length", std::nullopt, kLength);
     if (c.min_rope_length >= c.max_rope_length) {
       m.fail("min_rope_length", "must be below max_rope_length");
     }
@@ -152,9 +162,9 @@ CraneDescription loadCraneDescription(const std::string& path) {
   }
   {
     ConfigNode m = root.map("rope", true);
-    c.rope.mass_per_length = m.number("mass_per_length", std::nullopt, Bounds::positive());
-    c.rope.axial_stiffness = m.number("axial_stiffness", std::nullopt, Bounds::positive());
-    c.rope.bending_stiffness = m.number("bending_stiffness", std::nullopt, Bounds::nonNegative());
+    c.rope.mass_per_length = m.number("mass_per_length", std::nullopt, kRopeMassPerLength);
+    c.rope.axial_stiffness = m.number("axial_stiffness", std::nullopt, kRopeAxialStiffness);
+    c.rope.bending_stiffness = m.number("bending_stiffness", std::nullopt, kRopeBendingStiffness);
     c.rope.breaking_force = m.number("breaking_force", std::nullopt, Bounds::positive());
     c.rope.falls = m.integer("falls", std::nullopt, 1, 12);
     m.finish();

@@ -7,7 +7,6 @@
 #include <map>
 #include <memory>
 #include <random>
-#include <sstream>
 #include <utility>
 
 #include "crane_twin/io/config_reader.hpp"
@@ -22,13 +21,6 @@ namespace {
 constexpr double kMaxSteps = 1e12;
 // The fastest initial payload velocity a scene may give, per component [m/s].
 constexpr double kMaxPayloadSpeed = 50.0;
-
-// A number as a message shows it (1e+200, 65.52: six significant digits).
-std::string shown(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
 
 // Each model choice's values with the scene file's word for it (docs/scenes.md); the argument
 // only picks the choice.
@@ -149,7 +141,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   if (s.time_step > s.duration) root.fail("time_step", "must not exceed duration");
   if (s.duration / s.time_step > kMaxSteps) {
     root.fail("duration",
-              "asks for more than 1e12 steps of time_step (" + shown(s.time_step) + " s)");
+              "asks for more than 1e12 steps of time_step (" + shownNumber(s.time_step) + " s)");
   }
   s.output_interval = root.number("output_interval", 0.01, Bounds::positive());
   if (s.output_interval < s.time_step * (1.0 - 1e-9)) {
@@ -194,12 +186,12 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     r.subdomain_frame = n.string("subdomain_frame", "fixed", {"fixed", "corotational"});
     r.subdomain_rotation = n.number("subdomain_rotation", 0.1, Bounds::closed(1e-4, 1.0));
     r.tension_only = n.boolean("tension_only", true);
-    // (1 s damps every axial mode of a crane rope far beyond critical; 100 kg/m is a 130 mm rope)
+    // (1 s damps every axial mode of a crane rope far beyond critical)
     r.damping = n.number("damping", 0.0, Bounds::closed(0.0, 1.0));
-    r.mass_per_length = n.number("mass_per_length", def.mass_per_length, {0.0, 100.0, true, false});
-    r.axial_stiffness = n.number("axial_stiffness", def.axial_stiffness, Bounds::positive());
+    r.mass_per_length = n.number("mass_per_length", def.mass_per_length, kRopeMassPerLength);
+    r.axial_stiffness = n.number("axial_stiffness", def.axial_stiffness, kRopeAxialStiffness);
     r.bending_stiffness =
-        n.number("bending_stiffness", def.bending_stiffness, Bounds::closed(0.0, 1e8));
+        n.number("bending_stiffness", def.bending_stiffness, kRopeBendingStiffness);
     r.breaking_force = n.number("breaking_force", def.breaking_force, Bounds::positive());
     r.safety_factor = n.number("safety_factor", 5.0, Bounds::closed(1.0, 100.0));
     r.reeving_length = n.number("reeving_length", 0.0, Bounds::closed(0.0, 5000.0));
@@ -290,7 +282,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     s.swing_azimuth_deg = n.number("swing_azimuth_deg", 0.0, Bounds::any());
     s.payload_velocity = n.vec3("payload_velocity", Eigen::Vector3d::Zero());
     if (!(s.payload_velocity.cwiseAbs().maxCoeff() <= kMaxPayloadSpeed)) {
-      n.fail("payload_velocity", "must be at most " + shown(kMaxPayloadSpeed) +
+      n.fail("payload_velocity", "must be at most " + shownNumber(kMaxPayloadSpeed) +
                                      " m/s in each component (a load thrown at 180 km/h)");
     }
     if (n.has("payload_offset")) {
@@ -299,8 +291,9 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
       s.payload_offset = n.vec2("payload_offset");
       const double off = std::hypot(s.payload_offset.x(), s.payload_offset.y());
       if (!(off < s.rope.length)) {
-        n.fail("payload_offset", "lies " + shown(off) + " m off, not less than rope.length (" +
-                                     shown(s.rope.length) + " m): the rope cannot reach");
+        n.fail("payload_offset", "lies " + shownNumber(off) +
+                                     " m off, not less than rope.length (" +
+                                     shownNumber(s.rope.length) + " m): the rope cannot reach");
       }
     }
     if (s.initial_mode == InitialMode::landed) {

@@ -38,6 +38,16 @@ struct Bounds {
   bool contains(double v) const;
 };
 
+/// A number as a message shows it (six significant digits: 65.52, 1e+200).
+std::string shownNumber(double v);
+
+/// The rope's section per fall, in a scene's rope.* keys and a crane file's rope: (the largest
+/// crane ropes: some 130 mm, 100 kg/m, E A 1e9 N; a solid steel bar of 60 mm has E I 1.3e5
+/// N m^2) bounds beyond any of them, refused by name rather than failing numerically.
+inline const Bounds kRopeMassPerLength{0.0, 100.0, true, false};       // [kg/m]
+inline const Bounds kRopeAxialStiffness{0.0, 1e12, true, false};       // [N]
+inline const Bounds kRopeBendingStiffness = Bounds::closed(0.0, 1e8);  // [N m^2]
+
 /// Load a YAML file; InputError names the file on a missing file or a syntax error.
 YAML::Node loadYamlFile(const std::string& path);
 
