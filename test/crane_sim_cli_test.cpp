@@ -129,6 +129,12 @@ TEST(CraneSimCli, BadInputExitsWithTwoAndNamesTheKey) {
   EXPECT_EQ(r.status, 2) << r.out;
   r = run("modes " + kScene + " --part hull");
   EXPECT_EQ(r.status, 2) << r.out;
+  r = run("sweep " + kScene + " --quick --reference-dt 0.01");  // coarser than the scene's
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("--reference-dt 0.01 s"), std::string::npos) << r.out;
+  r = run("run " + kScene + " --set duration=1e200");  // its step count overflowed before
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("'duration'"), std::string::npos) << r.out;
   r = run("frobnicate");
   EXPECT_EQ(r.status, 2) << r.out;
   r = run("");

@@ -330,6 +330,12 @@ struct SweepArgs {
 
 int runSweep(const SceneArgs& a, const SweepArgs& w) {
   const ct::Scene scene = ct::loadScene(a.scene, a.sets);
+  if (w.reference_dt > scene.time_step) {
+    throw ct::InputError("--reference-dt " + ct::shownNumber(w.reference_dt) +
+                         " s: the reference must not take a longer step than the scene's "
+                         "time_step (" +
+                         ct::shownNumber(scene.time_step) + " s)");
+  }
   const double refDt = w.reference_dt > 0.0 ? w.reference_dt : 0.5 * scene.time_step;
   std::ofstream out;
   if (!w.out.empty()) out = openOutput(w.out, "--out");
