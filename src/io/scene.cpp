@@ -332,7 +332,7 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
       // Default area: the payload drawn as a cube of 1000 kg/m^3 (docs/ros.md markers).
       ConfigNode p = n.map("payload");
       w.payload_area =
-          p.number("area", payloadCubeFaceArea(s.payload_mass), Bounds::closed(0.0, 1e4));
+          p.number("area", payloadCubeFaceArea(s.payload_mass), Bounds::closed(0.0, 1000.0));
       w.payload_drag_coefficient = p.number("drag_coefficient", 1.05, Bounds::closed(0.0, 5.0));
       p.finish();
     }
