@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include "crane_twin/elements/gauss_legendre.hpp"
 #include "crane_twin/integrators/numerical_failure.hpp"
@@ -29,6 +30,14 @@ constexpr int kMaxHalvings = 6;
 constexpr double kChordTurn = 0.02;
 constexpr double kLengthChange = 1e-3;
 constexpr int kSlowIterations = 4;
+// A rope whose points' tangents leave its chord by more than this [rad] (bowed by wind on the
+// rope, or lagging behind a slewing trolley) takes its tension and axial stiffness along each
+// point's own tangent in the iteration matrix (factorize): along the chord, the axial stiffness
+// EA sin^2(alpha) leaks across it, and Newton on a wind draw (4 falls, 23.5 m/s with 30 % gusts,
+// the tangents up to 0.064 rad off the chord) contracted by 0.79 per iteration, took 6.6
+// iterations a step and failed at 30 ten times in 30 s. A straighter rope keeps the cheaper
+// chord form (the T8036's combination 1: 8e-4 rad).
+constexpr double kBowedTangent = 1e-3;
 // Gauss points for the reduced force: at least kMinPointsPerElement per element and about
 // kQuadraturePoints on the whole rope, at most the full model's rule. Measured on
 // t8036_combination1 (120 elements, 5 s, against full order): 1 point per element left a
@@ -335,11 +344,50 @@ bool InvariantReducedSolver::factorize(double a, double c, double k, const Eigen
   const Eigen::MatrixXd Kax = (D1_ * wa.asDiagonal() * D1_.transpose()) / L_;  // on d d^T
   const int n = n_;
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(n + 3, n + 3);
+  // The tension's and the axial law's 3 x 3 blocks: on the chord's projectors, or, for a bowed
+  // rope (kBowedTangent), along each point's tangent t_g:
+  //   sum_g D1_g D1_g^T (wt_g (I - t_g t_g^T) + wa_g t_g t_g^T) / L
+  //   = Kg / L (x) I + sum_ab P_ab (x) e_a e_b^T,  P_ab = D1 diag((wa - wt) t_a t_b) D1^T / L,
+  // and the damper's sum_ab Q_ab (x) e_a e_b^T, Q_ab = D1 diag(wa t_a t_b) D1^T / L.
+  double bow = 0.0;
+  for (int g = 0; g < w_.size(); ++g) bow = std::max(bow, Rx.col(g).normalized().cross(d).norm());
+  std::vector<Eigen::Matrix3d> along, damped;  // per (i, j), row-major, when bowed
+  if (bow > kBowedTangent) {
+    static constexpr int pa[6] = {0, 0, 0, 1, 1, 2}, pb[6] = {0, 1, 2, 1, 2, 2};
+    along.assign(static_cast<std::size_t>(m_ * m_), Eigen::Matrix3d::Zero());
+    damped = along;
+    Eigen::VectorXd cp(w_.size()), cq(w_.size());
+    for (int q = 0; q < 6; ++q) {
+      for (int g = 0; g < w_.size(); ++g) {
+        const Eigen::Vector3d t = Rx.col(g).normalized();
+        cp(g) = (wa(g) - wt(g)) * t(pa[q]) * t(pb[q]);
+        cq(g) = wa(g) * t(pa[q]) * t(pb[q]);
+      }
+      const Eigen::MatrixXd P = D1_ * cp.asDiagonal() * D1_.transpose() / L_;
+      const Eigen::MatrixXd Q = damping_ != 0.0
+                                    ? Eigen::MatrixXd(D1_ * cq.asDiagonal() * D1_.transpose() / L_)
+                                    : Eigen::MatrixXd::Zero(m_, m_);
+      for (int i = 0; i < m_; ++i)
+        for (int j = 0; j < m_; ++j) {
+          Eigen::Matrix3d& A = along[static_cast<std::size_t>(i * m_ + j)];
+          Eigen::Matrix3d& C = damped[static_cast<std::size_t>(i * m_ + j)];
+          A(pa[q], pb[q]) = A(pb[q], pa[q]) = P(i, j);
+          C(pa[q], pb[q]) = C(pb[q], pa[q]) = Q(i, j);
+        }
+    }
+    for (int i = 0; i < m_; ++i)
+      for (int j = 0; j < m_; ++j)
+        along[static_cast<std::size_t>(i * m_ + j)] +=
+            (Kg(i, j) / L_) * Eigen::Matrix3d::Identity() + (EI / (L_ * L_ * L_)) * Kb_(i, j) * tr;
+  }
   for (int i = 0; i < m_; ++i)
     for (int j = 0; j < m_; ++j) {
-      J.block<3, 3>(3 * i, 3 * j) = a * Mrs_(i, j) * Eigen::Matrix3d::Identity() +
-                                    k * (Ktr(i, j) * tr + Kax(i, j) * dd) +
-                                    c * damping_ * Kax(i, j) * dd;
+      const std::size_t ij = static_cast<std::size_t>(i * m_ + j);
+      J.block<3, 3>(3 * i, 3 * j) =
+          a * Mrs_(i, j) * Eigen::Matrix3d::Identity() +
+          (along.empty() ? Eigen::Matrix3d(k * (Ktr(i, j) * tr + Kax(i, j) * dd) +
+                                           c * damping_ * Kax(i, j) * dd)
+                         : Eigen::Matrix3d(k * along[ij] + c * damping_ * damped[ij]));
       // The ground at the end point: psi_i(1) psi_j(1) (k K_c + c C_c).
       if (ground_ && !rigged_)
         J.block<3, 3>(3 * i, 3 * j) +=
