@@ -348,7 +348,8 @@ bool InvariantReducedSolver::factorize(double a, double c, double k, const Eigen
   // rope (kBowedTangent), along each point's tangent t_g:
   //   sum_g D1_g D1_g^T (wt_g (I - t_g t_g^T) + wa_g t_g t_g^T) / L
   //   = Kg / L (x) I + sum_ab P_ab (x) e_a e_b^T,  P_ab = D1 diag((wa - wt) t_a t_b) D1^T / L,
-  // and the damper's sum_ab Q_ab (x) e_a e_b^T, Q_ab = D1 diag(wa t_a t_b) D1^T / L.
+  // and the damper's sum_ab Q_ab (x) e_a e_b^T, Q_ab = D1 diag(wa t_a t_b) D1^T / L; bending
+  // stays across the chord, (EI / L^3) K_b (x) (I - d d^T), in either form.
   double bow = 0.0;
   for (int g = 0; g < w_.size(); ++g) bow = std::max(bow, Rx.col(g).normalized().cross(d).norm());
   std::vector<Eigen::Matrix3d> along, damped;  // per (i, j), row-major, when bowed
