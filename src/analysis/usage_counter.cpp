@@ -119,22 +119,20 @@ void UsageCounter::observe(const SeriesValues& row, const LiftOffMonitor& lift_o
       }
     }
   }
-  // Each hot spot's cycles as they close (the history itself is not kept).
-  std::vector<RainflowCycle> closed;
-  for (std::size_t i = 0; i < counters_.size() && i < row.stresses.size(); ++i) {
-    closed.clear();
-    counters_[i].add(row.stresses[i], closed);
-    closed_damage_[i] += minerDamage(closed, curves_[i]);
-  }
+  countStresses(row.stresses.data(), row.stresses.size());
 }
 
 void UsageCounter::observeStep(const Eigen::VectorXd& stresses) {
+  countStresses(stresses.data(), static_cast<std::size_t>(stresses.size()));
+}
+
+void UsageCounter::countStresses(const double* stresses, std::size_t count) {
+  // Each hot spot's cycles as they close (the history itself is not kept).
   std::vector<RainflowCycle> closed;
-  for (std::size_t i = 0; i < counters_.size() && i < static_cast<std::size_t>(stresses.size());
-       ++i) {
+  for (std::size_t i = 0; i < counters_.size() && i < count; ++i) {
     closed.clear();
-    counters_[i].add(stresses(static_cast<Eigen::Index>(i)), closed);
-    if (!closed.empty()) closed_damage_[i] += minerDamage(closed, curves_[i]);
+    counters_[i].add(stresses[i], closed);
+    closed_damage_[i] += minerDamage(closed, curves_[i]);
   }
 }
 

@@ -48,8 +48,7 @@ void setRopeAndLoad(CraneModel& m) {
   // The static strain at the rope's top, W / (n EA), W the hanging weight: beyond
   // kMaxStaticStrain no steel wire rope holds it (they break at 1 to 3 %), and the static
   // solve would fail or mean nothing.
-  const double weight =
-      (m.end_mass + m.hook_mass + m.rope.mass_per_length * scene.rope.length) * scene.gravity;
+  const double weight = (m.end_mass + m.hook_mass + m.ropeMass()) * scene.gravity;
   const double strain = weight / m.rope.axial_stiffness;
   if (!(strain <= kMaxStaticStrain)) {
     char what[512];
@@ -60,7 +59,7 @@ void setRopeAndLoad(CraneModel& m) {
                   "rope.mass_per_length, rope.axial_stiffness, rope.falls and gravity set it)",
                   weight, 100.0 * strain, m.rope.axial_stiffness, n, 100.0 * kMaxStaticStrain);
     // (the key of the largest share of the weight)
-    const double rope_mass = m.rope.mass_per_length * scene.rope.length;
+    const double rope_mass = m.ropeMass();
     const char* key = scene.hookBlockMass() > std::max(scene.payload_mass, rope_mass) ? "hook.mass"
                       : rope_mass > scene.payload_mass ? "rope.mass_per_length"
                                                        : "payload.mass";

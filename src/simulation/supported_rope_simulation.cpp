@@ -390,10 +390,8 @@ SeriesValues SupportedRopeSimulation::seriesWith(const CoupledState& s,
   v.trolley_radius = drives_.trolleyRadius();
   v.energy = energy;
   v.constraint_error = constraintError(*support_, s);
-  if (model_.hot_spots) {  // docs/fatigue.md: sigma = sigma_sw + S_z z
-    const Eigen::VectorXd sigma = model_.hot_spots->stresses(s.z);
-    v.stresses.assign(sigma.data(), sigma.data() + sigma.size());
-  }
+  const Eigen::VectorXd sigma = model_.hotSpotStresses(s.z);
+  v.stresses.assign(sigma.data(), sigma.data() + sigma.size());
   if (ground_) {
     v.contact_force = ground_->force(payload, payload_velocity).f.z();
     v.payload_landed = v.contact_force > 0.0;

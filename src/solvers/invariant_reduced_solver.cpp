@@ -350,8 +350,9 @@ bool InvariantReducedSolver::factorize(double a, double c, double k, const Eigen
   //   = Kg / L (x) I + sum_ab P_ab (x) e_a e_b^T,  P_ab = D1 diag((wa - wt) t_a t_b) D1^T / L,
   // and the damper's sum_ab Q_ab (x) e_a e_b^T, Q_ab = D1 diag(wa t_a t_b) D1^T / L; bending
   // stays across the chord, (EI / L^3) K_b (x) (I - d d^T), in either form.
+  const Matrix3X T = Rx.colwise().normalized();  // t_g
   double bow = 0.0;
-  for (int g = 0; g < w_.size(); ++g) bow = std::max(bow, Rx.col(g).normalized().cross(d).norm());
+  for (int g = 0; g < w_.size(); ++g) bow = std::max(bow, T.col(g).cross(d).norm());
   std::vector<Eigen::Matrix3d> along, damped;  // per (i, j), row-major, when bowed
   if (bow > kBowedTangent) {
     static constexpr int pa[6] = {0, 0, 0, 1, 1, 2}, pb[6] = {0, 1, 2, 1, 2, 2};
@@ -360,9 +361,9 @@ bool InvariantReducedSolver::factorize(double a, double c, double k, const Eigen
     Eigen::VectorXd cp(w_.size()), cq(w_.size());
     for (int q = 0; q < 6; ++q) {
       for (int g = 0; g < w_.size(); ++g) {
-        const Eigen::Vector3d t = Rx.col(g).normalized();
-        cp(g) = (wa(g) - wt(g)) * t(pa[q]) * t(pb[q]);
-        cq(g) = wa(g) * t(pa[q]) * t(pb[q]);
+        const double tt = T(pa[q], g) * T(pb[q], g);
+        cp(g) = (wa(g) - wt(g)) * tt;
+        cq(g) = wa(g) * tt;
       }
       const Eigen::MatrixXd P = D1_ * cp.asDiagonal() * D1_.transpose() / L_;
       const Eigen::MatrixXd Q = damping_ != 0.0

@@ -104,6 +104,8 @@ class UsageCounter {
   double massRatioCubedSum() const;
   /// Keep `l` among the latest kRecentLifts.
   void remember(const LiftRecord& l);
+  /// The hot spots' next stresses [Pa] (a row's or a step's) into their rainflow counts.
+  void countStresses(const double* stresses, std::size_t count);
   double payload_mass_ = 0.0, max_load_ = 0.0, design_hours_ = 0.0;
   std::vector<std::string> names_;
   std::vector<SnCurve> curves_;

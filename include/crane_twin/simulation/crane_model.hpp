@@ -83,6 +83,11 @@ struct CraneModel {
                ? scene.crane->trolley_mass + scene.rope.mass_per_length * scene.rope.reeving_length
                : 0.0;
   }
+  /// The hot spots' stresses for the structure's coordinates z [Pa] (docs/fatigue.md:
+  /// sigma = sigma_sw + S_z z), empty without hot spots.
+  Eigen::VectorXd hotSpotStresses(const Eigen::VectorXd& z) const {
+    return hot_spots ? hot_spots->stresses(z) : Eigen::VectorXd();
+  }
   /// Gravity (0, 0, -g) [m/s^2].
   Eigen::Vector3d gravityVector() const { return Eigen::Vector3d(0.0, 0.0, -scene.gravity); }
 };

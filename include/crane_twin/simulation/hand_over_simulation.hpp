@@ -73,9 +73,7 @@ class HandOverSimulation : public Simulation {
     return full_order_ ? full_.topTension() : reducedTopTension();
   }
   Eigen::VectorXd hotSpotStresses() const override {
-    if (full_order_) return full_.hotSpotStresses();
-    const CraneModel& m = full_.model();
-    return m.hot_spots ? m.hot_spots->stresses(reducedSupport()) : Eigen::VectorXd();
+    return full_order_ ? full_.hotSpotStresses() : full_.model().hotSpotStresses(reducedSupport());
   }
   void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
               Eigen::Vector3d& jib_tip) const override;

@@ -26,9 +26,7 @@ class SupportedRopeSimulation : public Simulation, public MeasuredWindInput {
   double time() const override { return state_.t; }
   SeriesValues series() const override { return seriesOf(state_); }
   double topTension() const override { return topTensionOf(state_); }
-  Eigen::VectorXd hotSpotStresses() const override {
-    return model_.hot_spots ? model_.hot_spots->stresses(state_.z) : Eigen::VectorXd();
-  }
+  Eigen::VectorXd hotSpotStresses() const override { return model_.hotSpotStresses(state_.z); }
   void sample(Eigen::Vector3d& payload, Eigen::Vector3d& cab,
               Eigen::Vector3d& jib_tip) const override;
   CoupledState fullState() const override { return state_; }
