@@ -135,6 +135,10 @@ TEST(CraneSimCli, BadInputExitsWithTwoAndNamesTheKey) {
   r = run("run " + kScene + " --set duration=1e200");  // its step count overflowed before
   EXPECT_EQ(r.status, 2) << r.out;
   EXPECT_NE(r.out.find("'duration'"), std::string::npos) << r.out;
+  // The default reduced rope's 6 transverse modes on a mesh that holds 3: the mesh is named.
+  r = run("run " + kScene + " --set rope.model=reduced --set rope.elements=1 --set duration=0.01");
+  EXPECT_EQ(r.status, 2) << r.out;
+  EXPECT_NE(r.out.find("'rope.elements'"), std::string::npos) << r.out;
   r = run("frobnicate");
   EXPECT_EQ(r.status, 2) << r.out;
   r = run("");

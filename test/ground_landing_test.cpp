@@ -546,6 +546,11 @@ trolley: {radius: 30}
   refused({"payload.height=-2"}, "payload.height");
   // A rope too short to reach the landed load: the key and both distances named.
   refused({"ground.height=0", "initial.mode=landed"}, "rope.length");
+  // A landed load whose top stands above the rope's top (about 68 m up): the rope cannot hang
+  // down to it, however long.
+  refused({"ground.height=70", "initial.mode=landed", "rope.length=66"}, "ground.height");
+  refused({"ground.height=0", "payload.height=90", "initial.mode=landed", "rope.length=66"},
+          "ground.height");
   refused({"ground.height=0", "rope.model=reduced", "rope.reduction=subdomains"}, "ground");
   refused({"ground.height=0", "rope.tension_only=false", "rope.length=66", "initial.mode=landed"},
           "initial.mode");

@@ -118,6 +118,8 @@ TEST(Scene, OutOfRangeIsRefused) {
   expectRefused(lift, {"initial.payload_offset=[1e200, 0]"},
                 {lift, "initial.payload_offset", "1e+200 m", "rope.length", "cannot reach"});
   expectRefused(lift, {"ground.stiffness=1e200"}, {lift, "ground.stiffness", "(0, 1e+14]"});
+  // A ground the resting load would sink into by metres (3600 kg and the hook block on 1 N/m).
+  expectRefused(lift, {"ground.stiffness=1"}, {lift, "ground.stiffness", "sink", "0.1 m"});
 }
 
 TEST(Scene, AHangingWeightNoRopeHoldsIsRefusedNamingItsLargestShare) {

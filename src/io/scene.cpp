@@ -21,6 +21,10 @@ namespace {
 constexpr double kMaxSteps = 1e12;
 // The fastest initial payload velocity a scene may give, per component [m/s].
 constexpr double kMaxPayloadSpeed = 50.0;
+// The deepest a resting load may sink into the ground under its weight, m g / ground.stiffness
+// [m] (the default 1e8 N/m: 1.2 mm under 12.5 t; soft soil under a load's footprint takes
+// centimetres).
+constexpr double kMaxGroundSink = 0.1;
 
 // Each model choice's values with the scene file's word for it (docs/scenes.md); the argument
 // only picks the choice.
@@ -375,6 +379,17 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
       root.fail("ground",
                 "the subdomain reduced rope (rope.reduction: subdomains) takes no ground; "
                 "use rope.reduction: invariant, rope.model: full or pendulum");
+    }
+    // A ground the resting load sinks deep into is not the stiff landing surface the penalty
+    // law models (docs/model.md "Ground contact"): its static sink m g / k is bounded.
+    const double sink = (s.payload_mass + s.hook_mass) * s.gravity / g.stiffness;
+    if (sink > kMaxGroundSink) {
+      n.fail("stiffness",
+             shownNumber(g.stiffness) + " N/m lets the resting load (" +
+                 shownNumber(s.payload_mass + s.hook_mass) + " kg) sink " + shownNumber(sink) +
+                 " m into the ground, more than " + shownNumber(kMaxGroundSink) +
+                 " m: give at least " +
+                 shownNumber((s.payload_mass + s.hook_mass) * s.gravity / kMaxGroundSink) + " N/m");
     }
     s.ground = g;
   }

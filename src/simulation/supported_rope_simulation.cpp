@@ -275,6 +275,16 @@ CoupledState SupportedRopeSimulation::landedStateAt(const Eigen::VectorXd& z) {
   const Eigen::Vector3d top = support_->point(s.z);
   Eigen::Vector3d dir;
   const double span = landedSpan(top, dir);
+  if (!(dir.z() < 0.0)) {  // a rope hangs down from its top: the load must rest below it
+    const GroundContactParameters& g = ground_->parameters();
+    char b[400];
+    std::snprintf(b, sizeof b,
+                  ": key 'ground.height': %.4g m with payload.height %.4g m puts the landed "
+                  "load's top (z = %.4g m) not below the rope's top (z = %.4g m): the rope "
+                  "hangs down to the load (initial.mode: landed)",
+                  g.height, g.payload_height, g.height + g.payload_height, top.z());
+    throw InputError(sc.file + b);
+  }
   const double hanging = span > 0.0 ? unloadedHangingLength(span) : 0.0;
   if (!(span > 0.0) || L < hanging) {
     char b[320];
