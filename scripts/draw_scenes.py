@@ -3,7 +3,8 @@
 "Scenes nobody ships"): each draw is one of the shipped T8036 scenes of its kind with its payload,
 radius, rope length, duration, structure model, mesh, rigging and falls drawn, and what the kind
 adds (swing, friction, the load's offset, wind and gusts, a random command seed, a throw; `pick`
-runs the shipped pick-swing-place cycle's 70 s from a drawn radius, perhaps off-centre).
+runs the shipped pick-swing-place cycle's 70 s from a drawn radius, perhaps off-centre;
+`windland` a lift-off, set-down or that cycle in wind).
 
     scripts/draw_scenes.py SEED COUNT [--kinds hang,landed,...] > LIST
     scripts/reduced_vs_full.sh LIST 2
@@ -17,7 +18,8 @@ reports those as they come.
 import argparse
 import random
 
-KINDS = ("hang", "landed", "lower", "stress", "throw", "offset", "wind", "random", "pick")
+KINDS = ("hang", "landed", "lower", "stress", "throw", "offset", "wind", "random", "pick",
+         "windland")
 DEFAULT_KINDS = "hang,hang,landed,lower,stress,throw"
 
 
@@ -77,6 +79,18 @@ def draw(rng, kind):
             o["initial.payload_offset"] = "[%.1f,%.1f]" % (rng.uniform(-2, 2), rng.uniform(-2, 2))
         o.pop("rope.length")
         o["duration"] = 70.0
+    elif kind == "windland":  # a lift-off, set-down or pick in wind, perhaps gusty
+        scene = rng.choice(["t8036_lift_off_slow", "t8036_off_centre_lift", "t8036_set_down",
+                            "t8036_pick_and_place"])
+        o["ground.friction"] = round(rng.uniform(0, 1), 2)
+        o.pop("rope.length")
+        if scene == "t8036_pick_and_place":
+            o["trolley.radius"] = round(rng.uniform(10, 45), 1)
+            o["duration"] = 70.0
+        o["wind.speed"] = round(rng.uniform(2, 20), 1)
+        o["wind.direction_deg"] = round(rng.uniform(0, 360))
+        if rng.random() < 0.5:
+            o["wind.gust.intensity"] = round(rng.uniform(0.05, 0.3), 2)
     elif kind == "random":  # seeded random operator commands
         scene = "hard_random_commands"
         o["random_commands.seed"] = rng.randrange(1000)
