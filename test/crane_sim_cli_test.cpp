@@ -557,6 +557,7 @@ TEST(CraneSimCli, CompareRefusesMalformedCsv) {
       {"cmp_nocol.csv", "t,payload_x\n0,1\n", "payload_y"},
       {"cmp_text.csv", nullptr, "not a finite number"},
       {"cmp_ragged.csv", nullptr, "fields"},
+      {"cmp_repeated.csv", nullptr, "does not increase"},
   };
   std::string header;
   {
@@ -574,6 +575,14 @@ TEST(CraneSimCli, CompareRefusesMalformedCsv) {
         const long fields = std::count(header.begin(), header.end(), ',') + 1;
         for (long k = 2; k < fields; ++k) out << ",0";
         out << "\n";
+      } else if (std::string(c.name) == "cmp_repeated.csv") {
+        // Two complete rows at the same time: rows are paired by time.
+        const long fields = std::count(header.begin(), header.end(), ',') + 1;
+        for (int row = 0; row < 2; ++row) {
+          out << (row == 0 ? header + "\n" : std::string()) << "0.5";
+          for (long k = 1; k < fields; ++k) out << ",0";
+          out << "\n";
+        }
       } else {
         out << header << "\n0,1,2\n";
       }

@@ -17,6 +17,12 @@ Trajectory readTrajectory(const std::string& series_csv, const std::string& node
                    "jib_tip_dx", "jib_tip_dy", "jib_tip_dz", "rope_length", "rope_top_tension"});
   Trajectory tr;
   for (const auto& r : rows) {
+    // Rows are matched by time: a time that does not increase would pair the wrong rows.
+    if (!tr.t.empty() && !(r[0] > tr.t.back())) {
+      throw InputError(series_csv + ": line " + std::to_string(tr.t.size() + 2) +
+                       ": t = " + shownNumber(r[0]) +
+                       " s does not increase (the row before: " + shownNumber(tr.t.back()) + " s)");
+    }
     tr.t.push_back(r[0]);
     tr.payload.emplace_back(r[1], r[2], r[3]);
     tr.cab.emplace_back(r[4], r[5], r[6]);
