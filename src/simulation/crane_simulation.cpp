@@ -166,7 +166,7 @@ Eigen::VectorXd CraneSimulation::unloadedHangingRope(const Eigen::Vector3d& top,
   // Hanging plumb without wind, that is its rest state. Inclined (a load landed off-centre),
   // the straight rope is not: its weight across it would sag it by decimetres in the first
   // seconds (2 m out under 64 m on the T8036: 0.48 m). Nor in a wind, which blows a rope
-  // carrying only its own weight sideways (15 m/s across 66 m of the T8036's falls: 0.25 m at
+  // carrying only its own weight sideways (15 m/s across 66 m of the T8036's falls: 0.54 m at
   // its middle). So the rope settles between its held ends under its weight and the wind.
   const bool windswept = rope_->externalPerLength().head<2>().norm() > 0.0;
   if (dir.x() != 0.0 || dir.y() != 0.0 || windswept) settleBetweenHeldEnds(*rope_, q);
