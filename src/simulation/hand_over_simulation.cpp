@@ -14,6 +14,7 @@ void HandOverSimulation::initialize() {
   full_order_ = false;
   steps_ = full_order_steps_ = 0;
   clear_of_ground_ = true;
+  loaded_on_ground_ = false;
   std::fill(hand_overs_.begin(), hand_overs_.end(), 0);
   const CoupledState f = full_.initialState();  // the rope at the scene's length
   full_.setState(f);
@@ -58,6 +59,7 @@ bool HandOverSimulation::tryHandBack() {
   if (!tryTakeOver(f)) return false;
   full_order_ = false;
   clear_of_ground_ = clearance >= kGroundMargin;
+  loaded_on_ground_ = false;
   return true;
 }
 
@@ -97,15 +99,36 @@ void HandOverSimulation::step() {
     // A touchdown from the air goes to full order (a landing load sliding or tipping its rope
     // rings in shapes the basis does not hold); a rope that carries the ground stays reduced on
     // a landed load and through its lift-off.
-    const bool clear = !withinGroundMargin(reducedNode(full_.ropeNodes() - 1));
+    const Eigen::Vector3d end = reducedNode(full_.ropeNodes() - 1);
+    const bool clear = !withinGroundMargin(end);
     const bool touchdown = !clear && (clear_of_ground_ || !carriesGround());
     clear_of_ground_ = clear;
-    if (touchdown) {
+    if (touchdown || (carriesGround() && restingRopeUnloaded(end))) {
       handOver(handOverState(), Cause::ground);
       return;
     }
   }
   if (errorTooLarge(steps_)) handOver(handOverState(), Cause::indicator);
+}
+
+bool HandOverSimulation::restingRopeUnloaded(const Eigen::Vector3d& end) {
+  if (!full_.ground() || !(full_.ground()->clearance(end) < 0.0)) {
+    loaded_on_ground_ = false;  // in the air (a lift-off): a landing is a touchdown
+    return false;
+  }
+  // The end's share of the top tension: what the hanging rope's weight leaves of it.
+  const CraneModel& m = full_.model();
+  const double end_weight = m.end_mass * m.scene.gravity;
+  const double end_tension =
+      reducedTopTension() - m.rope.mass_per_length * reducedLength() * m.scene.gravity;
+  if (end_tension >= kRopeLoadedFraction * end_weight) {
+    loaded_on_ground_ = true;
+    return false;
+  }
+  if (!loaded_on_ground_ || end_tension >= kRopeUnloadedFraction * end_weight) return false;
+  loaded_on_ground_ = false;
+  const Eigen::Vector3d top = reducedNode(0);
+  return (end - top).head<2>().norm() > kUnloadedOffsetFraction * reducedLength();
 }
 
 bool HandOverSimulation::slackened() const {
@@ -163,6 +186,7 @@ void HandOverSimulation::continueHandOverFrom(const HandOverSimulation& o) {
   hand_back_interval_ = o.hand_back_interval_;
   hand_back_countdown_ = o.hand_back_countdown_;
   clear_of_ground_ = o.clear_of_ground_;
+  loaded_on_ground_ = o.loaded_on_ground_;
 }
 
 }  // namespace crane_twin

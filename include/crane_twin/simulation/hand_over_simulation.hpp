@@ -36,6 +36,16 @@ namespace crane_twin {
 /// The payload's clearance above the ground under which a reduced run hands over to full order
 /// [m] (twice that for a hand-back): a load moves far less in one step (1 cm at 10 m/s and 1 ms).
 constexpr double kGroundMargin = 0.05;
+/// A resting load's rope is loaded once its end carries this fraction of the end mass's weight
+/// (its top tension less the hanging rope's weight), and unloaded again below
+/// kRopeUnloadedFraction: there the error indicator no longer looks (a tenth of the end weight).
+constexpr double kRopeLoadedFraction = 0.2, kRopeUnloadedFraction = 0.1;
+/// The end's horizontal offset from under the rope's top, as a fraction of the hanging length,
+/// beyond which an unloading rope on a resting load hands over (restingRopeUnloaded): such a
+/// rope sags into a catenary with a bending layer at the hook that the basis does not hold
+/// (docs/model.md "Hand-over to full order"); a plumb one (a jib's rebound over a set-down load,
+/// 0.16 m off under 61 m) stays reduced.
+constexpr double kUnloadedOffsetFraction = 0.01;
 
 struct HandOverSettings {
   double slack_tension_fraction = 0.1, taut_tension_fraction = 0.2;
@@ -159,6 +169,13 @@ class HandOverSimulation : public Simulation {
   bool withinGroundMargin(const Eigen::Vector3d& point) const {
     return full_.ground() && full_.ground()->clearance(point) < kGroundMargin;
   }
+  /// A load resting on the ground (pressed into it), off the rope top's vertical by more than
+  /// kUnloadedOffsetFraction of the hanging length, whose rope, loaded since it came to rest
+  /// there, has unloaded (kRopeLoadedFraction, kRopeUnloadedFraction): the jib's rebound after
+  /// a drag, a pay-out onto a stalled off-centre lift. The rope sags and rings as it unloads,
+  /// where the error indicator is blind. False without a ground; a landed start's rope, never
+  /// loaded, is not.
+  bool restingRopeUnloaded(const Eigen::Vector3d& end);
   /// Continue the mechanism's state (clock, counters, schedule) of another run of this kind.
   void continueHandOverFrom(const HandOverSimulation& other);
 
@@ -175,6 +192,8 @@ class HandOverSimulation : public Simulation {
   double full_since_ = 0.0;      ///< time of the last hand-over [s]
   double dwell_ = 0.0;           ///< its dwell before the first hand-back trial [s]
   bool clear_of_ground_ = true;  ///< the reduced payload was kGroundMargin clear at its last step
+  bool loaded_on_ground_ =
+      false;  ///< the resting load's rope has been loaded (restingRopeUnloaded)
   int hand_back_interval_ = 0, hand_back_countdown_ = 0;
 };
 
