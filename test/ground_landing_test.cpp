@@ -943,6 +943,28 @@ TEST(GroundLanding, ARopeUnloadingOntoADraggedLoadHandsOver) {
   EXPECT_LT(r.rope_rms, 0.002);
 }
 
+// A 4 t load on a 4 m rigging set down at 0.8 m/s (30 elements, 20 modes): the hoist pays out
+// 0.3 m after the touchdown, the rigging goes slack and the hook block (2 t) bobs alone on the
+// rope with the jib's rebound. Handed back a second after the touchdown, the reduced rope, shaped
+// for the hook and payload lumped, carried that and ended 5.7 mm rope RMS from full order (1.2 cm
+// on 60 elements and 100 modes over 15 s, where full order at half the step is 0.7 cm from
+// itself); the hand-back now waits while a resting payload's rigging is slack (kSlackRigging).
+TEST(GroundLanding, NoHandBackWhileALandedPayloadsRiggingIsSlack) {
+  const ReducedAgainstFull r =
+      runReducedAgainstFull("t8036_set_down", 10000,
+                            {"duration=10", "payload.mass=4000", "hook.rigging_length=4",
+                             "rope.length=58.8", "rope.elements=30", "structure.modes=20",
+                             "commands=[{t: 0, hoist_speed: 0.8}, {t: 4, hoist_speed: 0}]"});
+  std::printf(
+      "set-down on a rigging: %ld hand-over(s), %ld full-order steps, payload %.3g m and rope "
+      "RMS %.3g m from full order\n",
+      r.stats.hand_overs, r.stats.full_order_steps, r.payload, r.rope_rms);
+  EXPECT_EQ(r.stats.hand_overs, 1);  // the touchdown's, and no hand-back after it
+  EXPECT_TRUE(r.stats.integrating_full_order);
+  EXPECT_LT(r.payload, 0.01);
+  EXPECT_LT(r.rope_rms, 0.002);
+}
+
 // Scenes nobody ships (seeded draws, the same on every machine): a load of 0.5 to 12.5 t landed
 // at 15 m up to the load chart's radius (at most 50 m) on a ground 3 to 10 m up (the drum's 66 m
 // reach the lightest load's hook on the ground from there), friction 0 to 1, 10 cm of rope

@@ -229,6 +229,18 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // weight: at those low points the error indicator does not look (errorTooLarge), and the
   // transverse waves they pump leave the basis (header: the forecast's floor).
   if (releaseTensionLowPoint(f) < kIndicatorStrainFraction * endWeight()) return false;
+  // Not while a rigging's payload rests with its rigging slack: the hook block then hangs alone
+  // on the rope and bobs on it (the jib's rebound), snatching the rigging, on a rope whose basis
+  // is shaped for the hook and payload lumped; carried so, a 4 t set-down on a 4 m rigging
+  // drifted 4.9 mm rope RMS from full order in 2.8 s and ended 1.2 cm off (docs/model.md
+  // "Hand-over to full order").
+  const AncfRope& rope = full_.rope();
+  const Eigen::Vector3d payload = rope.position(f.q, rope.nodes() - 1);
+  if (rope.hasRigging() && withinGroundMargin(payload) &&
+      (payload - rope.position(f.q, rope.hookNode())).norm() <
+          rope.rigging().length() - kSlackRigging) {
+    return false;
+  }
   const double pe = solver_->projectionError(f.q);
   const bool firmly_taut = AncfRope::minNodalStrain(f.q) >= kFirmlyTautStrain * end_strain_;
   if (pe > (firmly_taut ? kIndicatorTolerance : kHandBackTolerance)) return false;
@@ -243,8 +255,7 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // shifts the swing's amplitude and period for good. A load resting on the ground has no
   // swing to shift (header: kHandBackEnergy).
   const CoupledState e = solver_->expand(r);
-  const AncfRope& rope = full_.rope();
-  const bool resting = withinGroundMargin(rope.position(f.q, rope.nodes() - 1));
+  const bool resting = withinGroundMargin(payload);
   const double Tf = rope.kineticEnergyRelativeToTop(f.v), Uf = rope.elasticEnergy(f.q);
   const double dE =
       std::abs(Tf - rope.kineticEnergyRelativeToTop(e.v)) + std::abs(Uf - rope.elasticEnergy(e.q));

@@ -176,6 +176,9 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   /// A release's forecast low point counts as slack below -kLowPointRoundOff of the end weight
   /// (releaseTensionLowPoint; a stress-free start's is zero up to its accelerations' round-off).
   static constexpr double kLowPointRoundOff = 1e-6;
+  /// A rigging shorter than its unstretched length by more than this [m] is slack (tryTakeOver:
+  /// a landed start's rigging is straight and unstretched, to round-off).
+  static constexpr double kSlackRigging = 1e-3;
 
  protected:
   Start startReduced(const CoupledState& full) override;
