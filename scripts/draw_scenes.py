@@ -4,7 +4,8 @@
 radius, rope length, duration, structure model, mesh, rigging and falls drawn, and what the kind
 adds (swing, friction, the load's offset, wind and gusts, a random command seed, a throw; `pick`
 runs the shipped pick-swing-place cycle's 70 s from a drawn radius, perhaps off-centre;
-`windland` a lift-off, set-down or that cycle in wind).
+`windland` a lift-off, set-down or that cycle in wind; `drag` a landed load under a slewing
+crane or a moving trolley, perhaps while reeling in).
 
     scripts/draw_scenes.py SEED COUNT [--kinds hang,landed,...] > LIST
     scripts/reduced_vs_full.sh LIST 2
@@ -19,7 +20,7 @@ import argparse
 import random
 
 KINDS = ("hang", "landed", "lower", "stress", "throw", "offset", "wind", "random", "pick",
-         "windland")
+         "windland", "drag")
 DEFAULT_KINDS = "hang,hang,landed,lower,stress,throw"
 
 
@@ -91,6 +92,18 @@ def draw(rng, kind):
         o["wind.direction_deg"] = round(rng.uniform(0, 360))
         if rng.random() < 0.5:
             o["wind.gust.intensity"] = round(rng.uniform(0.05, 0.3), 2)
+    elif kind == "drag":  # slewing or moving the trolley over a landed load, hoisting or not
+        scene = rng.choice(["t8036_lift_off_slow", "t8036_off_centre_lift"])
+        o["ground.friction"] = round(rng.uniform(0, 1), 2)
+        o.pop("rope.length")
+        o["trolley.radius"] = round(rng.uniform(10, 45), 1)
+        move = ("slew_rate: %.3f" % rng.uniform(-0.04, 0.04) if rng.random() < 0.5 else
+                "trolley_speed: %.2f" % rng.uniform(-0.5, 0.5))
+        hoist = ", hoist_speed: %.2f" % -rng.uniform(0.1, 0.8) if rng.random() < 0.5 else ""
+        stop = round(rng.uniform(3, 8), 1)
+        o["commands"] = "[{t: 0, %s%s}, {t: %s, slew_rate: 0, trolley_speed: 0, hoist_speed: 0}]" % (
+            move, hoist, stop)
+        o["duration"] = round(rng.uniform(12, 20), 1)
     elif kind == "random":  # seeded random operator commands
         scene = "hard_random_commands"
         o["random_commands.seed"] = rng.randrange(1000)
@@ -121,7 +134,9 @@ def main():
     for i in range(a.count):
         kind = rng.choice(kinds)
         scene, duration, o = draw(rng, kind)
-        sets = " ".join("--set %s=%s" % (k, v) for k, v in o.items())
+        # (a value with blanks is quoted for the list's reader, xargs)
+        sets = " ".join(('--set "%s=%s"' if " " in str(v) else "--set %s=%s") % (k, v)
+                        for k, v in o.items())
         print("d%d_%02d_%s %s %s %s" % (a.seed, i, kind, scene, duration, sets))
 
 
