@@ -785,6 +785,14 @@ ReducedAgainstFull runSideBySide(const CraneModel& full, const CraneModel& reduc
   return r;
 }
 
+// The reduced run's hand-overs and full-order steps and its distance from full order, labelled.
+void printAgainstFull(const char* what, const ReducedAgainstFull& r) {
+  std::printf(
+      "%s: %ld hand-over(s), %ld full-order steps, payload %.3g m and rope RMS %.3g m from full "
+      "order\n",
+      what, r.stats.hand_overs, r.stats.full_order_steps, r.payload, r.rope_rms);
+}
+
 // A shipped scene with `sets`, its default reduced rope against full order.
 ReducedAgainstFull runReducedAgainstFull(const std::string& scene_name, long steps,
                                          std::vector<std::string> sets = {}) {
@@ -865,10 +873,7 @@ TEST(GroundLanding, AThrownLiftOffHandsOverAtTheFirstFailedStep) {
 // full order and came back after 2.9 s, once the rope hung firmly taut.
 TEST(GroundLanding, ReducedRopeCarriesAnOffCentreLiftFromItsLandedStart) {
   const ReducedAgainstFull r = runReducedAgainstFull("t8036_off_centre_lift", 6000);
-  std::printf(
-      "off-centre lift-off: %ld hand-over(s), %ld full-order steps, payload %.3g m and rope RMS "
-      "%.3g m from full order\n",
-      r.stats.hand_overs, r.stats.full_order_steps, r.payload, r.rope_rms);
+  printAgainstFull("off-centre lift-off", r);
   EXPECT_EQ(r.stats.hand_overs, 0);
   EXPECT_EQ(r.stats.full_order_steps, 0);
   EXPECT_LT(r.payload, 0.01);
@@ -885,10 +890,7 @@ TEST(GroundLanding, ReducedRopeCarriesAnOffCentreLiftFromItsLandedStart) {
 // weight (InvariantReducedSimulation::kIndicatorStrainFraction).
 TEST(GroundLanding, ReducedRopeStaysReducedOnASetDownLoad) {
   const ReducedAgainstFull r = runReducedAgainstFull("t8036_set_down", 16000);
-  std::printf(
-      "set-down: %ld hand-over(s), %ld full-order steps, payload %.3g m and rope RMS %.3g m "
-      "from full order\n",
-      r.stats.hand_overs, r.stats.full_order_steps, r.payload, r.rope_rms);
+  printAgainstFull("set-down", r);
   EXPECT_EQ(r.stats.hand_overs, 1);  // the touchdown's
   EXPECT_FALSE(r.stats.integrating_full_order);
   EXPECT_LT(r.stats.full_order_steps, 1500);
@@ -910,10 +912,7 @@ TEST(GroundLanding, ReducedRopeComesBackOnALightLoadAtRest) {
       runReducedAgainstFull("t8036_set_down", 10000,
                             {"payload.mass=1605", "trolley.radius=44.6", "ground.friction=0.98",
                              "structure.model=rigid"});
-  std::printf(
-      "light set-down: %ld hand-over(s), %ld full-order steps, payload %.3g m and rope RMS %.3g "
-      "m from full order\n",
-      r.stats.hand_overs, r.stats.full_order_steps, r.payload, r.rope_rms);
+  printAgainstFull("light set-down", r);
   EXPECT_EQ(r.stats.hand_overs, 1);
   EXPECT_FALSE(r.stats.integrating_full_order);
   EXPECT_LT(r.stats.full_order_steps, 1500);
@@ -934,10 +933,7 @@ TEST(GroundLanding, ARopeUnloadingOntoADraggedLoadHandsOver) {
       "t8036_lift_off_slow", 14000,
       {"duration=14", "payload.mass=4000", "ground.friction=0.4", "rope.elements=30",
        "structure.modes=20", "commands=[{t: 0, slew_rate: 0.03}, {t: 6, slew_rate: 0}]"});
-  std::printf(
-      "dragged load: %ld hand-over(s), %ld full-order steps, payload %.3g m and rope RMS %.3g m "
-      "from full order\n",
-      r.stats.hand_overs, r.stats.full_order_steps, r.payload, r.rope_rms);
+  printAgainstFull("dragged load", r);
   EXPECT_GE(r.stats.hand_overs, 1);
   EXPECT_LT(r.payload, 0.01);
   EXPECT_LT(r.rope_rms, 0.002);
@@ -955,10 +951,7 @@ TEST(GroundLanding, NoHandBackWhileALandedPayloadsRiggingIsSlack) {
                             {"duration=10", "payload.mass=4000", "hook.rigging_length=4",
                              "rope.length=58.8", "rope.elements=30", "structure.modes=20",
                              "commands=[{t: 0, hoist_speed: 0.8}, {t: 4, hoist_speed: 0}]"});
-  std::printf(
-      "set-down on a rigging: %ld hand-over(s), %ld full-order steps, payload %.3g m and rope "
-      "RMS %.3g m from full order\n",
-      r.stats.hand_overs, r.stats.full_order_steps, r.payload, r.rope_rms);
+  printAgainstFull("set-down on a rigging", r);
   EXPECT_EQ(r.stats.hand_overs, 1);  // the touchdown's, and no hand-back after it
   EXPECT_TRUE(r.stats.integrating_full_order);
   EXPECT_LT(r.payload, 0.01);

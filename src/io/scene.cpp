@@ -382,14 +382,13 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
     }
     // A ground the resting load sinks deep into is not the stiff landing surface the penalty
     // law models (docs/model.md "Ground contact"): its static sink m g / k is bounded.
-    const double sink = (s.payload_mass + s.hook_mass) * s.gravity / g.stiffness;
+    const double load = s.payload_mass + s.hook_mass, sink = load * s.gravity / g.stiffness;
     if (sink > kMaxGroundSink) {
-      n.fail("stiffness",
-             shownNumber(g.stiffness) + " N/m lets the resting load (" +
-                 shownNumber(s.payload_mass + s.hook_mass) + " kg) sink " + shownNumber(sink) +
-                 " m into the ground, more than " + shownNumber(kMaxGroundSink) +
-                 " m: give at least " +
-                 shownNumber((s.payload_mass + s.hook_mass) * s.gravity / kMaxGroundSink) + " N/m");
+      n.fail("stiffness", shownNumber(g.stiffness) + " N/m lets the resting load (" +
+                              shownNumber(load) + " kg) sink " + shownNumber(sink) +
+                              " m into the ground, more than " + shownNumber(kMaxGroundSink) +
+                              " m: give at least " +
+                              shownNumber(load * s.gravity / kMaxGroundSink) + " N/m");
     }
     s.ground = g;
   }

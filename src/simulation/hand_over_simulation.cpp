@@ -125,7 +125,10 @@ bool HandOverSimulation::restingRopeUnloaded(const Eigen::Vector3d& end) {
     loaded_on_ground_ = true;
     return false;
   }
-  if (!loaded_on_ground_ || end_tension >= kRopeUnloadedFraction * end_weight) return false;
+  if (!loaded_on_ground_ ||
+      end_tension >= SupportedRopeSimulation::kRestingLoadFraction * end_weight) {
+    return false;
+  }
   loaded_on_ground_ = false;
   const Eigen::Vector3d top = reducedNode(0);
   return (end - top).head<2>().norm() > kUnloadedOffsetFraction * reducedLength();

@@ -16,12 +16,13 @@ InvariantBasisSettings invariantBasisSettings(const Scene& sc) {
   if (sc.rope.mode_count > 0) s.transverse_modes = sc.rope.mode_count;
   // A rope of few elements has few scalar coordinates: keep what it has (2 (N+1) - 1 interior).
   const int interior = 2 * (sc.rope.elements + 1) - 1;
-  if (s.transverse_modes > interior && sc.rope.mode_count > 0) {
-    throw InputError(sc.file + ": key 'rope.mode_count': at most " + std::to_string(interior) +
-                     " transverse modes for " + std::to_string(sc.rope.elements) +
-                     " elements, got " + std::to_string(s.transverse_modes));
-  }
-  if (s.transverse_modes > interior) {  // the default count on too coarse a mesh
+  if (s.transverse_modes > interior) {
+    if (sc.rope.mode_count > 0) {
+      throw InputError(sc.file + ": key 'rope.mode_count': at most " + std::to_string(interior) +
+                       " transverse modes for " + std::to_string(sc.rope.elements) +
+                       " elements, got " + std::to_string(s.transverse_modes));
+    }
+    // (the default count on too coarse a mesh)
     throw InputError(sc.file + ": key 'rope.elements': " + std::to_string(sc.rope.elements) +
                      " elements hold at most " + std::to_string(interior) +
                      " transverse modes, fewer than the reduced rope's default " +

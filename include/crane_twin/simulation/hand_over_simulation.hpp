@@ -37,9 +37,10 @@ namespace crane_twin {
 /// [m] (twice that for a hand-back): a load moves far less in one step (1 cm at 10 m/s and 1 ms).
 constexpr double kGroundMargin = 0.05;
 /// A resting load's rope is loaded once its end carries this fraction of the end mass's weight
-/// (its top tension less the hanging rope's weight), and unloaded again below
-/// kRopeUnloadedFraction: there the error indicator no longer looks (a tenth of the end weight).
-constexpr double kRopeLoadedFraction = 0.2, kRopeUnloadedFraction = 0.1;
+/// (its top tension less the hanging rope's weight), and unloaded again where its hook rests
+/// (SupportedRopeSimulation::kRestingLoadFraction, a tenth of that weight, where the error
+/// indicator no longer looks either).
+constexpr double kRopeLoadedFraction = 0.2;
 /// The end's horizontal offset from under the rope's top, as a fraction of the hanging length,
 /// beyond which an unloading rope on a resting load hands over (restingRopeUnloaded): such a
 /// rope sags into a catenary with a bending layer at the hook that the basis does not hold
@@ -171,7 +172,7 @@ class HandOverSimulation : public Simulation {
   }
   /// A load resting on the ground (pressed into it), off the rope top's vertical by more than
   /// kUnloadedOffsetFraction of the hanging length, whose rope, loaded since it came to rest
-  /// there, has unloaded (kRopeLoadedFraction, kRopeUnloadedFraction): the jib's rebound after
+  /// there, has unloaded (kRopeLoadedFraction, kRestingLoadFraction): the jib's rebound after
   /// a drag, a pay-out onto a stalled off-centre lift. The rope sags and rings as it unloads,
   /// where the error indicator is blind. False without a ground; a landed start's rope, never
   /// loaded, is not.
