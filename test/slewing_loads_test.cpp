@@ -6,6 +6,7 @@
 
 #include <Eigen/CholmodSupport>
 #include <cmath>
+#include <memory>
 
 #include "crane_twin/io/config_reader.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
@@ -167,4 +168,45 @@ TEST(SlewingLoads, StructureRespondsAsTheModalEquationsPredict) {
   EXPECT_GT(fe.x(), 0.0);
   EXPECT_NEAR(dc.x(), fe.x(), 0.05 * std::abs(fe.x()));
   EXPECT_NEAR(dc.z(), fe.z(), 0.05 * std::abs(fe.z()));
+}
+
+// A sub-step of a halved step holds the rope at the drives' pose of its own end time
+// (RopeSupport::setStepFraction): the trolley point at fraction f of a step that slews from
+// theta0 to theta1 and moves the trolley from R0 to R1 is the point of the pose
+// (theta0 + f (theta1 - theta0), R0 + f (R1 - R0)), computed here by setPose itself; f = 1 is the
+// step's end pose again, and a step without drive motion keeps its pose.
+TEST(SlewingLoads, AStepFractionHoldsTheSupportAtThePoseOfThatTime) {
+  const CraneModel m = t8036({});
+  const TowerCraneStructure& st = *m.structure;
+  const double th0 = 0.30, th1 = 0.3001, r0 = 40.0, r1 = 40.001;
+  for (const bool rigid : {false, true}) {
+    SCOPED_TRACE(rigid ? "rigid" : "modal");
+    ModalOptions o;
+    o.count = 10;
+    const ModalBasis b = lowestModes(st.K, st.M, o);
+    std::unique_ptr<RopeSupport> s, probe;
+    if (rigid) {
+      s = std::make_unique<RigidTrolleySupport>(st, r1, th1);
+      probe = std::make_unique<RigidTrolleySupport>(st, r1, th1);
+    } else {
+      s = std::make_unique<ModalStructureSupport>(st, b, 0.01, r1, th1);
+      probe = std::make_unique<ModalStructureSupport>(st, b, 0.01, r1, th1);
+    }
+    Eigen::VectorXd z = Eigen::VectorXd::Zero(s->size());
+    for (int k = 0; k < z.size(); ++k) z(k) = 0.01 * (k + 1);
+    const Eigen::Vector3d end = s->point(z);
+    s->setPoseStep(th0, r0, th1, r1);
+    EXPECT_EQ((s->point(z) - end).norm(), 0.0);
+    for (const double f : {0.5, 0.25, 0.75}) {
+      s->setStepFraction(f);
+      probe->setPose(th0 + f * (th1 - th0), r0 + f * (r1 - r0));
+      EXPECT_LT((s->point(z) - probe->point(z)).norm(), 1e-12);
+      EXPECT_GT((s->point(z) - end).norm(), 1e-4 * (1.0 - f));
+    }
+    s->setStepFraction(1.0);
+    EXPECT_LT((s->point(z) - end).norm(), 1e-12);
+    s->setPoseStep(th1, r1, th1, r1);
+    s->setStepFraction(0.5);
+    EXPECT_LT((s->point(z) - end).norm(), 1e-12);
+  }
 }

@@ -183,6 +183,7 @@ void SupportedRopeSimulation::setHookResting(const Eigen::Vector3d& payload,
 
 bool SupportedRopeSimulation::advanceDrives(double t, double dt, const Eigen::VectorXd& z) {
   const double before = drives_.hoistLength();
+  const double theta0 = drives_.slewAngle(), radius0 = drives_.trolleyRadius();
   const bool moved = drives_.advance(t, dt);
   // Rope lying on the load (docs/model.md "Ground contact"): reeled in first; paid out onto it
   // while the hook rests there.
@@ -190,8 +191,12 @@ bool SupportedRopeSimulation::advanceDrives(double t, double dt, const Eigen::Ve
   if (paid < 0.0) piled_ = std::max(0.0, piled_ + paid);
   if (paid > 0.0 && hook_resting_) piled_ += paid;
   updateWind(t + dt, z);
-  if (!moved) return false;
+  if (!moved) {
+    support_->setPoseStep(theta0, radius0, theta0, radius0);
+    return false;
+  }
   support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
+  support_->setPoseStep(theta0, radius0, drives_.slewAngle(), drives_.trolleyRadius());
   support_->setSlewMotion(drives_.slewRate(), drives_.slewAcceleration());
   return true;
 }

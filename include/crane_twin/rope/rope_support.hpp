@@ -48,6 +48,19 @@ class RopeSupport {
   /// (docs/model.md). The constraint then holds the rope at the new point from the next step on
   /// (a rheonomic constraint). No effect on a fixed anchor.
   virtual void setPose(double /*theta*/, double /*radius*/) {}
+  /// The drives' pose at the start (theta0, radius0) and end (theta1, radius1) of the step to
+  /// come, the end's already set by setPose (SupportedRopeSimulation::advanceDrives); equal ends
+  /// for a step without drive motion. A step the solver halves (stepWithHalving) holds the rope
+  /// at the pose of each sub-step's end time (setStepFraction): held at the full step's end
+  /// pose, a half step had to follow that step's whole motion in half the time, and the
+  /// constraint force took the difference as an impulse (a slewing crane's trolley moves
+  /// 0.3 mm in half a 1 ms step; the pendulum's top then rang at 7 MN, docs/model.md
+  /// "Full-order solution").
+  void setPoseStep(double theta0, double radius0, double theta1, double radius1);
+  /// The pose at fraction f of the step (0 < f <= 1): theta0 + f (theta1 - theta0), radius
+  /// likewise (the drives' ramps change a rate by at most a_max h within a step); f = 1 is the
+  /// step's end pose again. Nothing to do on a step without drive motion.
+  void setStepFraction(double f);
   /// Slewing rate theta' [rad/s] and acceleration theta'' [rad/s^2] of the step to come, for
   /// the inertial loads of slewing on the structure (docs/model.md, `slewing.inertial_loads`;
   /// StructureSupportBase). No effect on a support without structural coordinates.
@@ -75,6 +88,24 @@ class RopeSupport {
   virtual Eigen::VectorXd structureDisplacement(const Eigen::VectorXd& /*z*/) const {
     return Eigen::VectorXd();
   }
+
+ private:
+  double theta0_ = 0.0, radius0_ = 0.0, theta1_ = 0.0, radius1_ = 0.0;
+  double fraction_ = 1.0;    ///< the fraction of the step whose pose is set
+  bool pose_moves_ = false;  ///< the step's ends differ
+};
+
+/// Sets a sub-step's pose for a scope (RopeSupport::setStepFraction) and the step's end pose
+/// again when it closes, also where the step throws.
+class StepFractionScope {
+ public:
+  explicit StepFractionScope(RopeSupport& support) : support_(support) {}
+  ~StepFractionScope() { support_.setStepFraction(1.0); }
+  StepFractionScope(const StepFractionScope&) = delete;
+  StepFractionScope& operator=(const StepFractionScope&) = delete;
+
+ private:
+  RopeSupport& support_;
 };
 
 /// Rope top tension [N]: the force between the rope's top node and the support point less the

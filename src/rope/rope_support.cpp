@@ -1,0 +1,24 @@
+#include "crane_twin/rope/rope_support.hpp"
+
+#include <cmath>
+
+namespace crane_twin {
+
+void RopeSupport::setPoseStep(double theta0, double radius0, double theta1, double radius1) {
+  theta0_ = theta0;
+  radius0_ = radius0;
+  theta1_ = theta1;
+  radius1_ = radius1;
+  fraction_ = 1.0;  // (the caller set the end pose)
+  pose_moves_ = theta0 != theta1 || radius0 != radius1;
+}
+
+void RopeSupport::setStepFraction(double f) {
+  // (Sub-steps of 2^-k of the step sum to its end up to round-off: that end is the end pose.)
+  if (std::abs(f - 1.0) < 1e-9) f = 1.0;
+  if (!pose_moves_ || f == fraction_) return;
+  fraction_ = f;
+  setPose(theta0_ + f * (theta1_ - theta0_), radius0_ + f * (radius1_ - radius0_));
+}
+
+}  // namespace crane_twin
