@@ -141,6 +141,7 @@ void SupportedRopeSimulation::resetDrivesAndPose() {
   piled_ = 0.0;
   hook_resting_ = false;
   support_->setPose(sc.slew_angle, sc.trolley_radius);
+  support_->setPoseStep(sc.slew_angle, sc.trolley_radius, sc.slew_angle, sc.trolley_radius);
   support_->setSlewMotion(0.0, 0.0);
   // A fresh 3 s history and no measurement: the scene's wind, or none.
   if (sc.wind) {
@@ -160,6 +161,8 @@ void SupportedRopeSimulation::continueDrivesFrom(const SupportedRopeSimulation& 
   piled_ = o.piled_;
   hook_resting_ = o.hook_resting_;
   support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
+  support_->setPoseStep(drives_.slewAngle(), drives_.trolleyRadius(), drives_.slewAngle(),
+                        drives_.trolleyRadius());
   support_->setSlewMotion(drives_.slewRate(), drives_.slewAcceleration());
   wind_ = o.wind_;
   wind_3s_ = o.wind_3s_;
