@@ -18,6 +18,7 @@ void RopeSupport::setStepFraction(double f) {
   if (std::abs(f - 1.0) < 1e-9) f = 1.0;
   if (!pose_moves_ || f == fraction_) return;
   fraction_ = f;
+  if (f == 1.0) return setPose(theta1_, radius1_);  // (the end pose exactly, not to round-off)
   setPose(theta0_ + f * (theta1_ - theta0_), radius0_ + f * (radius1_ - radius0_));
 }
 
