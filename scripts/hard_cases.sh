@@ -32,6 +32,8 @@ run large_step_reduced hard_large_step.yaml --set rope.model=reduced
 run random_commands hard_random_commands.yaml
 run random_commands_reduced hard_random_commands.yaml --set rope.model=reduced
 run falling_rope hard_falling_rope.yaml
+run random_landed hard_random_landed.yaml
+run random_landed_reduced hard_random_landed.yaml --set rope.model=reduced
 # The paper's subdomains in the chord's frame (the paper scenes' setting) on the swings and the
 # large step.
 for c in swing_30deg swing_60deg large_step; do
@@ -40,7 +42,7 @@ for c in swing_30deg swing_60deg large_step; do
 done
 # The pendulum rope (the ladder's cheapest rung) on the cases where a straight bar makes sense.
 for c in swing_60deg short_rope_2m slack_throw emergency_stop_slew emergency_stop_trolley \
-         hoist_60_3_60 one_hour_undamped large_step random_commands; do
+         hoist_60_3_60 one_hour_undamped large_step random_commands random_landed; do
   run "${c}_pendulum" "hard_$c.yaml" --set rope.model=pendulum
 done
 run stress_free_heavy_rigid_pendulum hard_stress_free_heavy.yaml --set rope.model=pendulum --set structure.model=rigid

@@ -241,6 +241,21 @@ TEST(HardCases, RandomCommandsAreReproducible) {
          true});
 }
 
+TEST(HardCases, RandomCommandsFromALandedLoad) {
+  // Lifted off, set down swinging and dragged at random (docs/stability.md): the pendulum at full
+  // length (its touchdown at 8.0 s halves a step while the crane slews, which read 125 times the
+  // hanging weight before each half step held the rope at its own time's pose), full order and
+  // the reduced rope over the first 12 s on a coarser mesh. The peak top tension lies between
+  // the hanging weight (the load is lifted) and 5 times it.
+  check({"hard_random_landed.yaml", {"rope.model=pendulum"}, true, 1.0, 5.0});
+  check({"hard_random_landed.yaml", {"duration=12", "rope.elements=30"}, true, 1.0, 5.0});
+  check({"hard_random_landed.yaml",
+         {"duration=12", "rope.elements=30", "rope.model=reduced"},
+         true,
+         1.0,
+         5.0});
+}
+
 TEST(HardCases, FallingRopeWithoutPayload) {
   check({"hard_falling_rope.yaml", {"duration=2", "rope.elements=30"}, false});
 }
