@@ -1,7 +1,5 @@
 #include "crane_twin/rope/rope_support.hpp"
 
-#include <cmath>
-
 namespace crane_twin {
 
 void RopeSupport::setPoseStep(double theta0, double radius0, double theta1, double radius1) {
@@ -14,8 +12,6 @@ void RopeSupport::setPoseStep(double theta0, double radius0, double theta1, doub
 }
 
 void RopeSupport::setStepFraction(double f) {
-  // (Sub-steps of 2^-k of the step sum to its end up to round-off: that end is the end pose.)
-  if (std::abs(f - 1.0) < 1e-9) f = 1.0;
   if (!pose_moves_ || f == fraction_) return;
   fraction_ = f;
   if (f == 1.0) return setPose(theta1_, radius1_);  // (the end pose exactly, not to round-off)

@@ -140,8 +140,7 @@ void SupportedRopeSimulation::resetDrivesAndPose() {
   drives_.reset();
   piled_ = 0.0;
   hook_resting_ = false;
-  support_->setPose(sc.slew_angle, sc.trolley_radius);
-  support_->setPoseStep(sc.slew_angle, sc.trolley_radius, sc.slew_angle, sc.trolley_radius);
+  holdPose(sc.slew_angle, sc.trolley_radius);
   support_->setSlewMotion(0.0, 0.0);
   // A fresh 3 s history and no measurement: the scene's wind, or none.
   if (sc.wind) {
@@ -160,9 +159,7 @@ void SupportedRopeSimulation::continueDrivesFrom(const SupportedRopeSimulation& 
   drives_.assignStateFrom(o.drives_);
   piled_ = o.piled_;
   hook_resting_ = o.hook_resting_;
-  support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
-  support_->setPoseStep(drives_.slewAngle(), drives_.trolleyRadius(), drives_.slewAngle(),
-                        drives_.trolleyRadius());
+  holdPose(drives_.slewAngle(), drives_.trolleyRadius());
   support_->setSlewMotion(drives_.slewRate(), drives_.slewAcceleration());
   wind_ = o.wind_;
   wind_3s_ = o.wind_3s_;
@@ -184,6 +181,11 @@ void SupportedRopeSimulation::setHookResting(const Eigen::Vector3d& payload,
   if (top_tension <= unloaded) hook_resting_ = true;
 }
 
+void SupportedRopeSimulation::holdPose(double theta, double radius) {
+  support_->setPose(theta, radius);
+  support_->setPoseStep(theta, radius, theta, radius);
+}
+
 bool SupportedRopeSimulation::advanceDrives(double t, double dt, const Eigen::VectorXd& z) {
   const double before = drives_.hoistLength();
   const double theta0 = drives_.slewAngle(), radius0 = drives_.trolleyRadius();
@@ -194,12 +196,10 @@ bool SupportedRopeSimulation::advanceDrives(double t, double dt, const Eigen::Ve
   if (paid < 0.0) piled_ = std::max(0.0, piled_ + paid);
   if (paid > 0.0 && hook_resting_) piled_ += paid;
   updateWind(t + dt, z);
-  if (!moved) {
-    support_->setPoseStep(theta0, radius0, theta0, radius0);
-    return false;
-  }
-  support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
+  // (Equal ends where the drives did not move.)
   support_->setPoseStep(theta0, radius0, drives_.slewAngle(), drives_.trolleyRadius());
+  if (!moved) return false;
+  support_->setPose(drives_.slewAngle(), drives_.trolleyRadius());
   support_->setSlewMotion(drives_.slewRate(), drives_.slewAcceleration());
   return true;
 }

@@ -334,15 +334,9 @@ void FullOrderSolver::initializeAccelerations(CoupledState& s) {
 void FullOrderSolver::step(CoupledState& s) {
   hoisting_ = rope_.length() != last_step_length_;
   last_step_length_ = rope_.length();
-  // A sub-step holds the rope at the drives' pose of its own end time (RopeSupport).
-  const StepFractionScope scope(support_);
-  const double t0 = s.t;
   stepWithHalving(
-      s, h_, kMaxHalvings,
-      [this, t0](CoupledState& x, double h, std::string& why) {
-        support_.setStepFraction((x.t + h - t0) / h_);
-        return tryStep(x, h, why);
-      },
+      s, h_, kMaxHalvings, support_,
+      [this](CoupledState& x, double h, std::string& why) { return tryStep(x, h, why); },
       halved_steps_);
 }
 

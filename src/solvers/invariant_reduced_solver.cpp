@@ -462,15 +462,9 @@ void InvariantReducedSolver::step(CoupledState& s) {
     s = start;
     throw NumericalFailure(why);
   }
-  // A sub-step holds the rope at the drives' pose of its own end time (RopeSupport).
-  const StepFractionScope scope(support_);
-  const double t0 = s.t;
   stepWithHalving(
-      s, h_, kMaxHalvings,
-      [this, t0](CoupledState& x, double h, std::string& why) {
-        support_.setStepFraction((x.t + h - t0) / h_);
-        return tryStep(x, h, why);
-      },
+      s, h_, kMaxHalvings, support_,
+      [this](CoupledState& x, double h, std::string& why) { return tryStep(x, h, why); },
       halved_steps_);
 }
 

@@ -59,7 +59,7 @@ class RopeSupport {
   void setPoseStep(double theta0, double radius0, double theta1, double radius1);
   /// The pose at fraction f of the step (0 < f <= 1): theta0 + f (theta1 - theta0), radius
   /// likewise (the drives' ramps change a rate by at most a_max h within a step); f = 1 is the
-  /// step's end pose again. Nothing to do on a step without drive motion.
+  /// step's end pose again, exactly. Nothing to do on a step without drive motion.
   void setStepFraction(double f);
   /// Slewing rate theta' [rad/s] and acceleration theta'' [rad/s^2] of the step to come, for
   /// the inertial loads of slewing on the structure (docs/model.md, `slewing.inertial_loads`;
@@ -93,19 +93,6 @@ class RopeSupport {
   double theta0_ = 0.0, radius0_ = 0.0, theta1_ = 0.0, radius1_ = 0.0;
   double fraction_ = 1.0;    ///< the fraction of the step whose pose is set
   bool pose_moves_ = false;  ///< the step's ends differ
-};
-
-/// Sets a sub-step's pose for a scope (RopeSupport::setStepFraction) and the step's end pose
-/// again when it closes, also where the step throws.
-class StepFractionScope {
- public:
-  explicit StepFractionScope(RopeSupport& support) : support_(support) {}
-  ~StepFractionScope() { support_.setStepFraction(1.0); }
-  StepFractionScope(const StepFractionScope&) = delete;
-  StepFractionScope& operator=(const StepFractionScope&) = delete;
-
- private:
-  RopeSupport& support_;
 };
 
 /// Rope top tension [N]: the force between the rope's top node and the support point less the

@@ -138,6 +138,9 @@ class SupportedRopeSimulation : public Simulation, public MeasuredWindInput {
   /// with the support at coordinates z (empty: at rest), and (record) the 3 s mean at the jib's
   /// height. No effect without wind.
   void updateWind(double t, const Eigen::VectorXd& z, bool record = true);
+  /// The support at pose (theta, radius), held there through the next step (a reset or a
+  /// continued run: RopeSupport::setPoseStep with equal ends).
+  void holdPose(double theta, double radius);
 
   const CraneModel model_;                     ///< own copy: callers may pass a temporary
   const std::optional<GroundContact> ground_;  ///< the scene's ground (the output's contact)
