@@ -268,19 +268,64 @@ TEST(AncfRopeLength, InPlaceLengthChangeEqualsAFreshRope) {
   }
 }
 
+namespace {
+// A 10 m tension-only rope under 100 kg from an anchor, stepped by a solver whose corrections
+// may reuse the iteration matrix and by one that factorises it in every correction.
+AncfRope tensionOnlyTestRope() {
+  AncfRope rope(12, 10.0, 1.9, 2.2e7, 78.5, 100.0, {0, 0, -g});
+  rope.setTensionOnly(true);
+  return rope;
+}
+
+NewtonSettings freshMatrixNewton() {
+  NewtonSettings newton;
+  newton.reuse_matrix_near_convergence = false;
+  return newton;
+}
+
+struct NewtonVariants {
+  AncfRope rope = tensionOnlyTestRope();
+  FixedAnchor anchor{Eigen::Vector3d(0, 0, 0)};
+  FullOrderSolver reusing{rope, anchor, GeneralizedAlpha::fromRhoInf(0.9), 1e-3};
+  FullOrderSolver fresh{rope, anchor, GeneralizedAlpha::fromRhoInf(0.9), 1e-3, freshMatrixNewton()};
+};
+}  // namespace
+
+TEST(AnchoredRope, ATautStepChecksItsFirstCorrectionWithTheSameMatrix) {
+  // A taut step converges in one correction and a check (integrators/newton_step.hpp): the
+  // previous step's quadratic constant foresees the check below the tolerance, so the check
+  // reuses the first correction's matrix. A tension-only rope swinging from 30 deg (taut
+  // throughout) against the same steps with a fresh matrix in every correction.
+  NewtonVariants v;
+  FullOrderSolver &reusing = v.reusing, &fresh = v.fresh;
+  CoupledState a = fresh.solveSwingEquilibrium(30.0 * M_PI / 180.0, 0.0);
+  a.v.setZero();
+  fresh.initializeAccelerations(a);
+  CoupledState b = a;
+  const int steps = 1000;
+  double largest = 0.0;
+  for (int k = 0; k < steps; ++k) {
+    reusing.step(a);
+    fresh.step(b);
+    largest = std::max(largest, (a.q - b.q).cwiseAbs().maxCoeff());
+  }
+  EXPECT_LT(largest, 1e-9) << "m between the two Newton variants' states";
+  EXPECT_EQ(fresh.energyConsistentSteps(), 0) << "the rope went slack";
+  // Every step but the first (which has no constant yet) and those converged in one correction.
+  EXPECT_GT(reusing.matrixReusingCorrections(), steps * 9 / 10);
+  std::printf("largest state difference %.3g m, %ld matrix-reusing corrections in %d steps\n",
+              largest, reusing.matrixReusingCorrections(), steps);
+}
+
 TEST(AnchoredRope, LastCorrectionReusingTheMatrixReachesTheFullNewtonState) {
   // Newton's last correction may reuse the factorised iteration matrix once the corrections
   // contract quadratically (integrators/newton_step.hpp): every step must then end where the
   // same step with a fresh matrix in every correction ends (both meet the same tolerance). A
   // tension-only rope with an axial damper swings 40 deg down onto the ground and bounces, so
   // generalized-alpha steps, energy-consistent steps, the damper and the contact all take part.
-  AncfRope rope(12, 10.0, 1.9, 2.2e7, 78.5, 100.0, {0, 0, -g});
-  rope.setTensionOnly(true);
-  FixedAnchor anchor({0, 0, 0});
-  NewtonSettings full_newton;
-  full_newton.reuse_matrix_near_convergence = false;
-  FullOrderSolver reusing(rope, anchor, GeneralizedAlpha::fromRhoInf(0.9), 1e-3);
-  FullOrderSolver fresh(rope, anchor, GeneralizedAlpha::fromRhoInf(0.9), 1e-3, full_newton);
+  NewtonVariants v;
+  const AncfRope& rope = v.rope;
+  FullOrderSolver &reusing = v.reusing, &fresh = v.fresh;
   GroundContactParameters ground;
   ground.payload_height = 1.0;
   ground.height = -10.0 - ground.payload_height + 0.05;  // 5 cm above the lowest pass

@@ -53,7 +53,7 @@ double constraintError(const RopeSupport& support, const CoupledState& s) {
 
 bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSettings& newton,
                 double h, const RopeIncrement& increment, CoupledState& s, std::string& why,
-                const Eigen::VectorXd* support_start_residual) {
+                const Eigen::VectorXd* support_start_residual, NewtonMemory* memory) {
   const int m = support.size();
   NewtonWeights w;
   w.mass = ga.massWeight();
@@ -69,7 +69,8 @@ bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSe
   Eigen::VectorXd Azr, dq;
   Eigen::Vector3d dmu;
   Eigen::VectorXd rz;
-  double previous = 0.0;  // the previous correction's max |dq|, |D dz| (0: none yet)
+  double previous = 0.0;        // the previous correction's max |dq|, |D dz| (0: none yet)
+  double step_constant = -1.0;  // largest d_k / d_(k-1)^2 so far (negative: none yet)
   for (int it = 0; it < newton.max_iterations; ++it) {
     if (m > 0) {
       rz = -bh2 *
@@ -92,15 +93,22 @@ bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSe
       s = start;
       return false;
     }
+    // The step's quadratic constant d_k / d_(k-1)^2 (header), largest of its corrections.
+    if (previous > 0.0) step_constant = std::max(step_constant, dmax / (previous * previous));
     if (dmax < newton.position_tolerance &&
         constraintError(support, s) < newton.constraint_tolerance) {
+      if (memory && step_constant >= 0.0) memory->quadratic_constant = step_constant;
       completeStep(ga, start, h, it + 1, s);
       return true;
     }
-    // Quadratic contraction with the next correction foreseen below the tolerance (header).
-    w.keep_matrix = newton.reuse_matrix_near_convergence && !w.keep_matrix && previous > 0.0 &&
-                    dmax <= kKeepMatrixContraction * previous &&
-                    dmax * dmax < newton.position_tolerance * previous;
+    // Quadratic contraction with the next correction foreseen below the tolerance (header):
+    // observed in this step, or after the first correction from the last step's constant.
+    const bool foreseen = previous > 0.0 ? dmax <= kKeepMatrixContraction * previous &&
+                                               dmax * dmax < newton.position_tolerance * previous
+                                         : memory && memory->quadratic_constant * dmax * dmax <
+                                                         newton.position_tolerance;
+    w.keep_matrix = newton.reuse_matrix_near_convergence && !w.keep_matrix && foreseen;
+    w.keep_foreseen_from_last_step = w.keep_matrix && previous == 0.0;
     previous = dmax;
   }
   why = at() + ": Newton did not converge in " + std::to_string(newton.max_iterations) +

@@ -410,14 +410,28 @@ bool FullOrderSolver::generalizedAlphaStep(CoupledState& s, double h, std::strin
                                       const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
                                       Eigen::Vector3d& dmu, std::string& reason) {
     // d/dq of the damping force through v' = gamma / (beta h) dq, times beta h^2.
-    assemble(x.q, x.v, w.mass, w.stiffness, w.damping, w.G, Q, nullptr, !w.keep_matrix);
+    const bool keep =
+        w.keep_matrix && (!w.keep_foreseen_from_last_step || lawBranchesAsAtMatrix(x.q));
+    assemble(x.q, x.v, w.mass, w.stiffness, w.damping, w.G, Q, nullptr, !keep);
+    if (!keep) matrix_q_ = x.q;
     Eigen::VectorXd rhs(n + 3);
     rhs.head(n) = -w.stiffness * (M * x.qdd + Q - rope_.gravityForce());
     rhs.head<3>() -= w.stiffness * x.lambda;
     rhs.tail<3>() = rc;
-    return solveIncrement(rhs, dq, dmu, reason, !w.keep_matrix);
+    return solveIncrement(rhs, dq, dmu, reason, !keep);
   };
-  return newtonStep(ga_, support_, newton_, h, increment, s, why);
+  return newtonStep(ga_, support_, newton_, h, increment, s, why, nullptr, &newton_memory_);
+}
+
+// Taut at every Gauss point (and the rigging bar) at both iterates: the trapezoid work error of
+// the axial law is then exactly 0 (AncfRope::slackSwitchWorkError), as for a symmetric law; and
+// the payload clear of the ground at both.
+bool FullOrderSolver::lawBranchesAsAtMatrix(const Eigen::VectorXd& q) const {
+  if (matrix_q_.size() != q.size() || rope_.slackSwitchWorkError(matrix_q_, q) != 0.0) return false;
+  if (!ground_) return true;
+  const int e = rope_.positionIndex(rope_.nodes() - 1);
+  return ground_->penetration(matrix_q_.segment<3>(e)) <= 0.0 &&
+         ground_->penetration(q.segment<3>(e)) <= 0.0;
 }
 
 // The energy-consistent step (docs/model.md "Energy-consistent step"): the trapezoidal rule

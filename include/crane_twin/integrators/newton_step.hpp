@@ -18,9 +18,21 @@
 // last correction may reuse the previous iteration matrix (NewtonWeights::keep_matrix: the
 // residual is assembled at the new iterate, the tangent and its factorisation are not). Its
 // acceptance test is the same; where it misses, the next iteration is a full one again.
+// With a NewtonMemory the first correction d_0 may be followed by such a correction too: Newton's
+// quadratic constant C in d_k <= C d_(k-1)^2 varies little from one step to the next, so where the
+// previous step's largest d_k / d_(k-1)^2 foresees the next correction below the tolerance
+// (C d_0^2 < position_tolerance) the matrix the first correction factorised is kept. A taut
+// rope's steps converge in one correction and a check: the check no longer assembles and
+// factorises the tangent (docs/model.md "Full-order solution"). Where C grew (a slack point's
+// kink, a snatch), the kept correction misses and costs one residual before a full iteration;
+// the step's own ratios then set C for the next step. A solver whose law is piecewise refuses
+// that keep where a branch changed since the matrix's iterate (NewtonWeights::
+// keep_foreseen_from_last_step): a stale tangent stiffer than the law's branch at the iterate
+// (a point gone slack) shrinks the correction below the tolerance before the state is there.
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <string>
 
 #include "crane_twin/integrators/coupled_state.hpp"
@@ -42,6 +54,13 @@ struct NewtonSettings {
   bool reuse_matrix_near_convergence = true;
 };
 
+/// What a solver's Newton iteration carries from one step to the next (see above).
+struct NewtonMemory {
+  /// The largest d_k / d_(k-1)^2 of the last step with two corrections or more [1/m]; infinite
+  /// before one (no first correction keeps the matrix then).
+  double quadratic_constant = std::numeric_limits<double>::infinity();
+};
+
 /// The weights of the beta h^2-scaled iteration matrix of a step of size h.
 struct NewtonWeights {
   double mass = 1.0;                            ///< a = (1 - alpha_m)/(1 - alpha_f)
@@ -51,6 +70,10 @@ struct NewtonWeights {
   /// The correction may reuse the previous iteration's factorised matrix (a solver that cannot
   /// ignores it): assemble only the residual.
   bool keep_matrix = false;
+  /// keep_matrix was set after the step's first correction by the last step's constant
+  /// (NewtonMemory), not by this step's own contraction: a solver whose law may have changed
+  /// branch since the matrix's iterate (a slack point, a contact) assembles it afresh instead.
+  bool keep_foreseen_from_last_step = false;
 };
 
 /// The rope's linear solve at the iterate s: assemble its rows of the system above with the
@@ -69,10 +92,12 @@ using RopeIncrement =
 /// r0 = M_z z''_0 + C_z z'_0 + K_z z_0 - f_z - D^T lambda_0 the start's residual, so that its
 /// mean over the step, M_z (z'_1 - z'_0) / h + C_z z'_m + K_z z_m - f_z = D^T (lambda_0 +
 /// lambda_1) / 2, holds whatever the start's z''_0 and lambda_0 (the midpoint balance of an
-/// energy-consistent step, whose start holds step means).
+/// energy-consistent step, whose start holds step means). With `memory`, the first correction
+/// may keep its matrix (see above) and the step's contraction is recorded there.
 bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSettings& newton,
                 double h, const RopeIncrement& increment, CoupledState& s, std::string& why,
-                const Eigen::VectorXd* support_start_residual = nullptr);
+                const Eigen::VectorXd* support_start_residual = nullptr,
+                NewtonMemory* memory = nullptr);
 
 /// The support's rows eliminated from a linear solve (its Schur complement): returns the
 /// condensed constraint row rc + D A_z^-1 r_z and A_z^-1 r_z in Azr, for the weights last set

@@ -132,6 +132,9 @@ class FullOrderSolver {
   // holds the derivative of twice that force (the start's share from step_start_, which
   // energyConsistentStep fills for `from`). With `matrix` false, Q alone (A_ untouched: a
   // Newton correction that reuses the factorised matrix, NewtonWeights::keep_matrix).
+  // Every Gauss point in the axial law's linear range (and the payload clear of the ground) at
+  // q and at matrix_q_: a kept matrix's tangent is then the law's own branch.
+  bool lawBranchesAsAtMatrix(const Eigen::VectorXd& q) const;
   void assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double massWeight,
                 double stiffWeight, double dampWeight, const Eigen::Matrix3d& G, Eigen::VectorXd& Q,
                 const CoupledState* from = nullptr, bool matrix = true);
@@ -173,6 +176,11 @@ class FullOrderSolver {
   GeneralizedAlpha ga_;
   double h_;
   NewtonSettings newton_;
+  // The generalized-alpha steps' Newton constant (newton_step.hpp): a first correction keeps its
+  // matrix where it foresees convergence and the law kept its branches (lawBranchesAsAtMatrix).
+  // The energy-consistent steps, all across slack/taut switches, do not use it.
+  NewtonMemory newton_memory_;
+  Eigen::VectorXd matrix_q_;     // the iterate at which A_ was last assembled
   SparseMatrix A_;               ///< KKT iteration matrix, pattern fixed at construction
   std::vector<int> mass_index_;  ///< value slot of each mass entry (in M's order)
   std::vector<double> mass_value_;
