@@ -156,8 +156,8 @@ TEST(SlackEpisodes, FallingRopeWithoutPayload) {
 TEST(SlackEpisodes, ShippedFallingRopeCreatesNoEnergy) {
   // hard_falling_rope.yaml (60 m, 60 elements) for 4 s at full order. A Newton check that kept
   // its first correction's matrix while a Gauss point had left the axial law's linear branch
-  // (docs/model.md "Full-order solution") raised its energy by 0.19 J at 3.45 s; the switching
-  // steps alone leave 1e-5 J.
+  // (docs/model.md "Full-order solution") raised its energy by 0.19 J in one step at 3.44 s; the
+  // switching steps alone leave 1e-5 J.
   const SlackRun a =
       run(std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/hard_falling_rope.yaml", 4.0, 1e-3);
   std::printf("shipped falling rope: %ld energy-consistent steps; energy rise %.3g J of %.6g J\n",

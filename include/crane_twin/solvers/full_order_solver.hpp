@@ -125,6 +125,9 @@ class FullOrderSolver {
   double timeStep() const { return h_; }
 
  private:
+  // Every Gauss point in the axial law's linear range (and the payload clear of the ground) at
+  // q and at matrix_q_: a kept matrix's tangent is then the law's own branch.
+  bool lawBranchesAsAtMatrix(const Eigen::VectorXd& q) const;
   // Fill the values of A_ (fixed pattern, -G in the multiplier block) and the internal force Q:
   // elastic, plus the axial damping force at velocity v with dampWeight x C_d in A_. With
   // `from` (an energy-consistent step from that state to (q, v)): Q is the step's mean force,
@@ -132,9 +135,6 @@ class FullOrderSolver {
   // holds the derivative of twice that force (the start's share from step_start_, which
   // energyConsistentStep fills for `from`). With `matrix` false, Q alone (A_ untouched: a
   // Newton correction that reuses the factorised matrix, NewtonWeights::keep_matrix).
-  // Every Gauss point in the axial law's linear range (and the payload clear of the ground) at
-  // q and at matrix_q_: a kept matrix's tangent is then the law's own branch.
-  bool lawBranchesAsAtMatrix(const Eigen::VectorXd& q) const;
   void assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& v, double massWeight,
                 double stiffWeight, double dampWeight, const Eigen::Matrix3d& G, Eigen::VectorXd& Q,
                 const CoupledState* from = nullptr, bool matrix = true);
@@ -180,7 +180,9 @@ class FullOrderSolver {
   // matrix where it foresees convergence and the law kept its branches (lawBranchesAsAtMatrix).
   // The energy-consistent steps, all across slack/taut switches, do not use it.
   NewtonMemory newton_memory_;
-  Eigen::VectorXd matrix_q_;     // the iterate at which A_ was last assembled
+  // The iterate at which a generalized-alpha step last assembled A_ (the matrix a first
+  // correction keeps; the energy-consistent step's and the start's solves do not set it).
+  Eigen::VectorXd matrix_q_;
   SparseMatrix A_;               ///< KKT iteration matrix, pattern fixed at construction
   std::vector<int> mass_index_;  ///< value slot of each mass entry (in M's order)
   std::vector<double> mass_value_;
