@@ -5,6 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <limits>
+#include <random>
+#include <vector>
 
 #include "crane_twin/elements/gauss_legendre.hpp"
 
@@ -381,4 +384,44 @@ TEST(AncfTensionOnly, AxialLawIsContinuousWithAContinuousSlope) {
       EXPECT_DOUBLE_EQ(N, EA * eps);
     }
   }
+}
+
+TEST(AncfForce, PointGradientsOverManyPointsAreEachPointsOwn) {
+  // ancfCablePointGradients (the reduced rope's batch over its Gauss points) against
+  // ancfCablePoint at every point: stretches across the taut range, the C1 band, slack and the
+  // guard, random directions and curvatures; with and without bending, both laws.
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double EA = 4.4e7;
+  const std::vector<double> stretches = {1.01,
+                                         1.0 + 3 * kSlackBand,
+                                         1.0 + 0.5 * kSlackBand,
+                                         1.0,
+                                         1.0 - 0.5 * kSlackBand,
+                                         1.0 - 3 * kSlackBand,
+                                         0.995,
+                                         0.9,
+                                         1.0 - kSlackGuardStrain - 0.05};
+  const int n = static_cast<int>(stretches.size()) * 4;
+  PointRows a(n, 3), b(n, 3);
+  for (int i = 0; i < n; ++i) {
+    const Eigen::Vector3d d = Eigen::Vector3d(u(gen), u(gen), u(gen)).normalized();
+    a.row(i) = stretches[i % stretches.size()] * d.transpose();
+    b.row(i) = 0.05 * Eigen::RowVector3d(u(gen), u(gen), u(gen));
+  }
+  for (double EI : {0.0, 157.0})
+    for (bool tension_only : {false, true}) {
+      SCOPED_TRACE(testing::Message() << "EI " << EI << " tension_only " << tension_only);
+      PointRows fa, fb;
+      ancfCablePointGradients(EA, EI, a, b, tension_only, fa, fb);
+      for (int i = 0; i < n; ++i) {
+        CablePointDerivatives d;
+        ancfCablePoint(EA, EI, a.row(i).transpose(), b.row(i).transpose(), false, d, tension_only);
+        // (EA (1 - 1 / |a|) near |a| = 1 is exact only to EA times the machine epsilon, in both)
+        const double tol = 1e-12 * (d.fa.norm() + d.fb.norm()) +
+                           10.0 * EA * std::numeric_limits<double>::epsilon();
+        EXPECT_LT((fa.row(i).transpose() - d.fa).norm(), tol) << i;
+        EXPECT_LT((fb.row(i).transpose() - d.fb).norm(), tol) << i;
+      }
+    }
 }

@@ -843,25 +843,45 @@ commands:
 // A lift-off that throws its load (4.4 t lifted at 1 m/s on four falls of the rigid T8036 at
 // 19 m, phi_2 near 3): the reduced rope's Newton fails in the bouncing, and the step goes to full
 // order whole. Halved at reduced order instead (before), its 4 halved steps read a lift-off
-// factor of 3.98 against full order's 2.94.
+// factor of 3.98 against full order's 2.94 (+35 %).
+// The factor of one such run is not reproducible to a few per cent: the load's bounces after the
+// throw part with round-off, so changes of the payload's mass by 1e-9 of itself move full order's
+// factor between 2.69 and 3.10 and the reduced run's between 2.77 and 3.29 (ten masses within
+// 4e-5 kg of 4434 kg; docs/validation.md "Loads on the ground"), while full order's payload moves
+// by 1 mm. So the factor is compared as the median over five masses about 1e-9 of each other
+// apart, against the halving's bias, and the payload at the scene's own mass.
 TEST(GroundLanding, AThrownLiftOffHandsOverAtTheFirstFailedStep) {
-  // (the scene's rope is the default reduced one)
-  const ReducedAgainstFull r =
-      runReducedAgainstFull("t8036_pick_and_place", 5000,
-                            {"structure.model=rigid", "rope.falls=4", "payload.mass=4434",
-                             "trolley.radius=19", "duration=5", "rope.elements=30"});
-  std::printf(
-      "thrown lift-off: %ld hand-overs, %ld halved steps, phi_2 %.4f against %.4f, "
-      "payload %.3g m from full order\n",
-      r.stats.hand_overs, r.stats.halved_steps, r.reduced_lift.factor(), r.full_lift.factor(),
-      r.payload);
-  ASSERT_EQ(r.full_lift.liftOffs(), 1);
-  ASSERT_EQ(r.reduced_lift.liftOffs(), 1);
-  ASSERT_GT(r.full_lift.factor(), 2.0);  // thrown
-  EXPECT_GE(r.stats.hand_overs, 1);
-  EXPECT_EQ(r.stats.halved_steps, 0);
-  EXPECT_NEAR(r.reduced_lift.factor(), r.full_lift.factor(), 0.02 * r.full_lift.factor());
-  EXPECT_LT(r.payload, 0.01);
+  std::vector<double> full_factors, reduced_factors;
+  for (double dm : {-9e-6, -4e-6, 0.0, 4e-6, 9e-6}) {
+    char mass[64];
+    std::snprintf(mass, sizeof mass, "payload.mass=%.6f", 4434.0 + dm);
+    SCOPED_TRACE(mass);
+    // (the scene's rope is the default reduced one)
+    const ReducedAgainstFull r =
+        runReducedAgainstFull("t8036_pick_and_place", 5000,
+                              {"structure.model=rigid", "rope.falls=4", mass, "trolley.radius=19",
+                               "duration=5", "rope.elements=30"});
+    std::printf(
+        "thrown lift-off (%s): %ld hand-overs, %ld halved steps, phi_2 %.4f against %.4f, "
+        "payload %.3g m from full order\n",
+        mass, r.stats.hand_overs, r.stats.halved_steps, r.reduced_lift.factor(),
+        r.full_lift.factor(), r.payload);
+    ASSERT_EQ(r.full_lift.liftOffs(), 1);
+    ASSERT_EQ(r.reduced_lift.liftOffs(), 1);
+    ASSERT_GT(r.full_lift.factor(), 2.0);  // thrown
+    EXPECT_GE(r.stats.hand_overs, 1);
+    EXPECT_EQ(r.stats.halved_steps, 0);
+    if (dm == 0.0) {
+      EXPECT_LT(r.payload, 0.01);
+    }
+    full_factors.push_back(r.full_lift.factor());
+    reduced_factors.push_back(r.reduced_lift.factor());
+  }
+  const auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  EXPECT_NEAR(median(reduced_factors), median(full_factors), 0.1 * median(full_factors));
 }
 
 // t8036_off_centre_lift: the rope, slanted 2 m to the load, drags it before it lifts and leaves

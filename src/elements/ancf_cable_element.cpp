@@ -229,6 +229,58 @@ void ancfCablePoint(double EA, double EI, const Eigen::Vector3d& a, const Eigen:
   d.Pbb = c * fbb * h3;
 }
 
+void ancfCablePointGradients(double EA, double EI, const PointRows& a, const PointRows& b,
+                             bool tension_only, PointRows& fa, PointRows& fb) {
+  // The terms of ancfCablePoint (header) as coefficients per point on a and b, one pass over the
+  // points' component columns.
+  const Eigen::Index n = a.rows();
+  fa.resize(n, 3);
+  fb.resize(n, 3);
+  const bool bending = EI != 0.0;
+  const double* __restrict ax = a.col(0).data();
+  const double* __restrict ay = a.col(1).data();
+  const double* __restrict az = a.col(2).data();
+  const double* __restrict bx = bending ? b.col(0).data() : nullptr;
+  const double* __restrict by = bending ? b.col(1).data() : nullptr;
+  const double* __restrict bz = bending ? b.col(2).data() : nullptr;
+  double* __restrict fax = fa.col(0).data();
+  double* __restrict fay = fa.col(1).data();
+  double* __restrict faz = fa.col(2).data();
+  double* __restrict fbx = fb.col(0).data();
+  double* __restrict fby = fb.col(1).data();
+  double* __restrict fbz = fb.col(2).data();
+  // One point, its axial coefficient N / |a| given (h = |a|^2, ih = 1 / h).
+  const auto point = [&](Eigen::Index i, double h, double ih, double ca) {
+    if (!bending) {
+      fax[i] = ca * ax[i], fay[i] = ca * ay[i], faz[i] = ca * az[i];
+      fbx[i] = fby[i] = fbz[i] = 0.0;
+      return;
+    }
+    // Bending: phi = EI/2 f h^-3, f = h bb - ab^2.
+    const double ab = ax[i] * bx[i] + ay[i] * by[i] + az[i] * bz[i];
+    const double bb = bx[i] * bx[i] + by[i] * by[i] + bz[i] * bz[i];
+    const double h3 = ih * ih * ih;
+    const double f = h * bb - ab * ab;
+    ca += EI * (bb - 3.0 * f * ih) * h3;
+    const double cab = -EI * ab * h3, cb = EI * h * h3;
+    fax[i] = ca * ax[i] + cab * bx[i], fay[i] = ca * ay[i] + cab * by[i],
+    faz[i] = ca * az[i] + cab * bz[i];
+    fbx[i] = cb * bx[i] + cab * ax[i], fby[i] = cb * by[i] + cab * ay[i],
+    fbz[i] = cb * bz[i] + cab * az[i];
+  };
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double h = ax[i] * ax[i] + ay[i] * ay[i] + az[i] * az[i];
+    const double g = std::sqrt(h), ih = 1.0 / h;
+    double ca = EA * (1.0 - g * ih);  // N / |a| = EA (1 - 1 / |a|) in the linear range
+    if (tension_only && g < 1.0 + kSlackBand) {
+      double N, dN;
+      ancfAxialLaw(EA, g - 1.0, true, N, dN);
+      ca = N / g;
+    }
+    point(i, h, ih, ca);
+  }
+}
+
 void ancfElasticForce(const AncfCableProperties& p, const Vector12& e, Vector12& Q, Matrix12* K) {
   const GaussRule& gr = gaussRule(p.gauss_points);
   const Eigen::VectorXd &xg = gr.x, &wg = gr.w;

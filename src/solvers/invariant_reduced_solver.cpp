@@ -89,6 +89,8 @@ InvariantReducedSolver::InvariantReducedSolver(const AncfRope& rope,
       }
       w_(c) = wg(g) * le;
     }
+  D1t_ = D1_.transpose();
+  D2t_ = D2_.transpose();
   Kb_ = D2_ * w_.asDiagonal() * D2_.transpose();
   slope_sum_ = D1_.cwiseAbs().colwise().sum().maxCoeff();
   psi_top_ = P.row(0);
@@ -190,43 +192,43 @@ Eigen::VectorXd InvariantReducedSolver::massTimes(const Eigen::VectorXd& x) cons
 
 Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
                                               const Eigen::VectorXd& yd) const {
-  // One pass over the points: r_x, r_xx (and r_x') as sums of the columns of A, the density's
-  // gradient, and the rank-one updates of Q_A (the inner size m is small: fixed 3-vectors).
+  // r_x = A D1 / L and r_xx = A D2 / L^2 at all points (n_g x 3, one column per component, each
+  // an axpy over the points per shape), the density's gradient there (ancfCablePointGradients),
+  // then Q_A = (w phi_a)^T D1^T + (w phi_b / L)^T D2^T (3 m dot products over the points).
   const double EA = rope_.axialStiffnessAt(L_), EI = rope_.element().bending_stiffness;
   const double c1 = 1.0 / L_, c2 = 1.0 / (L_ * L_), cEA = damping_ * EA;
   const bool damped = cEA > 0.0 && yd.size() == y.size();
   const bool tension_only = rope_.element().tension_only;
-  Eigen::VectorXd out = Eigen::VectorXd::Zero(n_);
-  double* Q = out.data();
-  const double* A = y.data();
-  const double* Ad = yd.data();
-  CablePointDerivatives d;
-  double min_stretch2 = std::numeric_limits<double>::infinity();
-  for (int g = 0; g < w_.size(); ++g) {
-    const double* d1 = D1_.col(g).data();
-    const double* d2 = D2_.col(g).data();
-    Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
-    for (int k = 0; k < m_; ++k) {
-      const Eigen::Map<const Eigen::Vector3d> ak(A + 3 * k);
-      a += d1[k] * ak;
-      b += d2[k] * ak;
+  const auto pointRows = [&](const Eigen::MatrixXd& Dt, const double* A, double scale,
+                             PointRows& r) {
+    r.resize(Dt.rows(), 3);
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<3>> Ac(A + c, m_);
+      r.col(c).noalias() = scale * (Dt * Ac);
     }
-    a *= c1;
-    b *= c2;
-    min_stretch2 = std::min(min_stretch2, a.squaredNorm());
-    ancfCablePoint(EA, EI, a, b, false, d, tension_only);
-    if (damped && !ancfAxialSlack(a.norm(), tension_only)) {
-      Eigen::Vector3d ad = Eigen::Vector3d::Zero();
-      for (int k = 0; k < m_; ++k) ad += d1[k] * Eigen::Map<const Eigen::Vector3d>(Ad + 3 * k);
-      const Eigen::Vector3d t = a.normalized();
-      d.fa += cEA * c1 * t.dot(ad) * t;
-    }
-    const Eigen::Vector3d fa = w_(g) * d.fa, fb = (w_(g) * c1) * d.fb;
-    for (int k = 0; k < m_; ++k) {
-      Eigen::Map<Eigen::Vector3d> qk(Q + 3 * k);
-      qk += d1[k] * fa + d2[k] * fb;
+  };
+  pointRows(D1t_, y.data(), c1, ra_);
+  if (EI != 0.0) pointRows(D2t_, y.data(), c2, rb_);
+  ancfCablePointGradients(EA, EI, ra_, rb_, tension_only, fa_, fb_);
+  const Eigen::ArrayXd h = ra_.rowwise().squaredNorm().array();
+  if (damped) {
+    // c EA eps' t with eps' = t . r_x', t = r_x / |r_x|: c EA (a . a') / h a, where not slack.
+    pointRows(D1t_, yd.data(), c1, rad_);
+    const Eigen::ArrayXd rate = (ra_.array() * rad_.array()).rowwise().sum();
+    for (Eigen::Index g = 0; g < h.size(); ++g) {
+      if (ancfAxialSlack(std::sqrt(h(g)), tension_only)) continue;
+      fa_.row(g) += (cEA * rate(g) / h(g)) * ra_.row(g);
     }
   }
+  fa_.array().colwise() *= w_.array();
+  fb_.array().colwise() *= c1 * w_.array();
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(n_);
+  for (int c = 0; c < 3; ++c) {
+    Eigen::Map<Eigen::VectorXd, 0, Eigen::InnerStride<3>> Qc(out.data() + c, m_);
+    Qc.noalias() = D1t_.transpose() * fa_.col(c);
+    if (EI != 0.0) Qc.noalias() += D2t_.transpose() * fb_.col(c);
+  }
+  const double min_stretch2 = h.minCoeff();
   last_force_min_stretch_ = std::sqrt(min_stretch2);
   if (rigged_) {
     // The rigging bar on [r_n; r_p] (AncfRope::setRigging), its axial damping as the rope's.

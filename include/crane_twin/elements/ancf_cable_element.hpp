@@ -138,6 +138,16 @@ struct CablePointDerivatives {
 };
 void ancfCablePoint(double EA, double EI, const Eigen::Vector3d& a, const Eigen::Vector3d& b,
                     bool hessian, CablePointDerivatives& d, bool tension_only = false);
+/// ancfCablePoint's gradient (fa, fb), no Hessian, at many points at once: row g of `a` and `b`
+/// (n x 3) holds r_x and r_xx of point g, the same rows of `fa` and `fb` receive its gradient.
+/// Written over the points' component columns, so the law vectorises across points:
+///   fa = c_a a + c_ab b,   fb = c_b b + c_ab a,
+///   c_a = N / |a| + EI (bb h^-3 - 3 f h^-4),  c_ab = -EI ab h^-3,  c_b = EI h^-2,
+/// with h = a.a, ab = a.b, bb = b.b, f = h bb - ab^2 and N the axial law at |a| - 1
+/// (ancfAxialLaw; EA (|a| - 1) wherever the point is in the linear range).
+using PointRows = Eigen::Matrix<double, Eigen::Dynamic, 3>;
+void ancfCablePointGradients(double EA, double EI, const PointRows& a, const PointRows& b,
+                             bool tension_only, PointRows& fa, PointRows& fb);
 /// The density phi(a, b) itself [J/m] (what ancfCablePoint differentiates).
 double ancfCableEnergyDensity(double EA, double EI, const Eigen::Vector3d& a,
                               const Eigen::Vector3d& b, bool tension_only = false);

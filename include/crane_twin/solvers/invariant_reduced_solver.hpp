@@ -216,7 +216,10 @@ class InvariantReducedSolver {
   Matrix6 bar_mass_ = Matrix6::Zero();  ///< the bar's consistent mass with the payload
   bool fact_bar_taut_ = false;
   Eigen::Vector3d fact_bar_dir_ = Eigen::Vector3d::Zero();
-  Eigen::MatrixXd D1_, D2_;   ///< m x n_g shape xi-derivatives at the Gauss points
+  Eigen::MatrixXd D1_, D2_;    ///< m x n_g shape xi-derivatives at the Gauss points
+  Eigen::MatrixXd D1t_, D2t_;  ///< their transposes (n_g x m): force()'s point-major products
+  // force()'s workspace: r_x, r_xx (and r_x') at the points and the density's gradient there.
+  mutable PointRows ra_, rb_, rad_, fa_, fb_;
   Eigen::VectorXd w_;         ///< n_g weights in xi
   Eigen::MatrixXd Kb_;        ///< sum w D2 D2^T (m x m)
   Eigen::MatrixXd mass_hat_;  ///< Psi^T M_hat Psi of the rope alone per unit mu L
