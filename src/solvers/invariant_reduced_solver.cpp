@@ -192,9 +192,10 @@ Eigen::VectorXd InvariantReducedSolver::massTimes(const Eigen::VectorXd& x) cons
 
 Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
                                               const Eigen::VectorXd& yd) const {
-  // r_x = A D1 / L and r_xx = A D2 / L^2 at all points (n_g x 3, one column per component, each
-  // an axpy over the points per shape), the density's gradient there (ancfCablePointGradients),
-  // then Q_A = (w phi_a)^T D1^T + (w phi_b / L)^T D2^T (3 m dot products over the points).
+  // r_x = A D1 / L and r_xx = A D2 / L^2 at all points (n_g x 3, one column per component: the
+  // matrix-vector product D1^T a^(c) of the shapes' derivatives with component c of the shapes'
+  // amplitudes), the density's gradient there (ancfCablePointGradients), then
+  // Q_A = (w phi_a)^T D1^T + (w phi_b / L)^T D2^T, component c as D1 (w phi_a)^(c) and likewise.
   const double EA = rope_.axialStiffnessAt(L_), EI = rope_.element().bending_stiffness;
   const double c1 = 1.0 / L_, c2 = 1.0 / (L_ * L_), cEA = damping_ * EA;
   const bool damped = cEA > 0.0 && yd.size() == y.size();

@@ -140,7 +140,7 @@ void ancfCablePoint(double EA, double EI, const Eigen::Vector3d& a, const Eigen:
                     bool hessian, CablePointDerivatives& d, bool tension_only = false);
 /// ancfCablePoint's gradient (fa, fb), no Hessian, at many points at once: row g of `a` and `b`
 /// (n x 3) holds r_x and r_xx of point g, the same rows of `fa` and `fb` receive its gradient.
-/// Written over the points' component columns, so the law vectorises across points:
+/// One pass over the points' component columns (contiguous arrays, no 3-vector temporaries):
 ///   fa = c_a a + c_ab b,   fb = c_b b + c_ab a,
 ///   c_a = N / |a| + EI (bb h^-3 - 3 f h^-4),  c_ab = -EI ab h^-3,  c_b = EI h^-2,
 /// with h = a.a, ab = a.b, bb = b.b, f = h bb - ab^2 and N the axial law at |a| - 1
