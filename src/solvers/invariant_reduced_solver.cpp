@@ -190,6 +190,17 @@ Eigen::VectorXd InvariantReducedSolver::massTimes(const Eigen::VectorXd& x) cons
   return out;
 }
 
+void InvariantReducedSolver::pointRows(const Eigen::MatrixXd& Dt, const double* A, double scale,
+                                       PointRows& r) const {
+  // Component c of the field at the points: scale Dt a^(c), a^(c) the c-components of the
+  // shapes' amplitudes (every third coordinate from c).
+  r.resize(Dt.rows(), 3);
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<3>> Ac(A + c, m_);
+    r.col(c).noalias() = scale * (Dt * Ac);
+  }
+}
+
 Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
                                               const Eigen::VectorXd& yd) const {
   // r_x = A D1 / L and r_xx = A D2 / L^2 at all points (n_g x 3, one column per component: the
@@ -200,14 +211,6 @@ Eigen::VectorXd InvariantReducedSolver::force(const Eigen::VectorXd& y,
   const double c1 = 1.0 / L_, c2 = 1.0 / (L_ * L_), cEA = damping_ * EA;
   const bool damped = cEA > 0.0 && yd.size() == y.size();
   const bool tension_only = rope_.element().tension_only;
-  const auto pointRows = [&](const Eigen::MatrixXd& Dt, const double* A, double scale,
-                             PointRows& r) {
-    r.resize(Dt.rows(), 3);
-    for (int c = 0; c < 3; ++c) {
-      const Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<3>> Ac(A + c, m_);
-      r.col(c).noalias() = scale * (Dt * Ac);
-    }
-  };
   pointRows(D1t_, y.data(), c1, ra_);
   if (EI != 0.0) pointRows(D2t_, y.data(), c2, rb_);
   ancfCablePointGradients(EA, EI, ra_, rb_, tension_only, fa_, fb_);
@@ -268,19 +271,10 @@ const Eigen::RowVectorXd& InvariantReducedSolver::stretches(const Eigen::VectorX
   next_stretch_cache_ = 1 - next_stretch_cache_;
   c.y = y;
   c.length = L_;
-  // |A D1_g| / L per point as in force(): fixed 3-vectors summed over the m shapes.
-  c.g.resize(w_.size());
-  const double* A = y.data();
-  for (int g = 0; g < w_.size(); ++g) {
-    const double* d1 = D1_.col(g).data();
-    double x = 0.0, yy = 0.0, z = 0.0;
-    for (int k = 0; k < m_; ++k) {
-      x += d1[k] * A[3 * k];
-      yy += d1[k] * A[3 * k + 1];
-      z += d1[k] * A[3 * k + 2];
-    }
-    c.g(g) = std::sqrt(x * x + yy * yy + z * z) / L_;
-  }
+  // |r_x| = |A D1_g| / L per point, r_x at the points as force() forms it.
+  PointRows rx;
+  pointRows(D1t_, y.data(), 1.0 / L_, rx);
+  c.g = rx.rowwise().norm().transpose();
   return c.g;
 }
 

@@ -246,6 +246,9 @@ class InvariantReducedSolver {
   TensionOnlySwitching switching_;
   double last_step_length_ = 0.0;
   bool hoisting_ = false;  ///< the length changed since the last step: judged by energy alone
+  // A field sum_k psi_k^(d)(xi_g) a_k at the Gauss points times `scale` (n_g x 3), for the
+  // shapes' derivative values Dt = D1t_ or D2t_ and the coordinates A = y (or y').
+  void pointRows(const Eigen::MatrixXd& Dt, const double* A, double scale, PointRows& r) const;
   // |r_x| at the Gauss points of the last two states asked for (stretches()).
   const Eigen::RowVectorXd& stretches(const Eigen::VectorXd& y) const;
   // A lower bound of min |r_x| over the points: for the end states of the last two converged
