@@ -358,3 +358,43 @@ TEST(AnchoredRope, LastCorrectionReusingTheMatrixReachesTheFullNewtonState) {
       "energy-consistent steps\n",
       largest, reusing.matrixReusingCorrections(), fresh.energyConsistentSteps());
 }
+
+TEST(AnchoredRope, AnEnergyConsistentStepLosesThetaTimesItsVelocityJumpAndNoMore) {
+  // energyConsistentScheme (integrators/tension_only_step.hpp): with the discrete gradient and no
+  // damper, the step's energy change is exactly -theta (v1 - v0)^T M (v1 - v0), theta =
+  // kEnergyDecayRate h, and its positions move by h ((1/2 + theta) v1 + (1/2 - theta) v0). A
+  // payload thrown up at 3 m/s on 10 m of tension-only rope: the rope goes slack and snatches.
+  const double h = 1e-3, theta = kEnergyDecayRate * h;
+  const AncfRope rope = tensionOnlyTestRope();
+  FixedAnchor anchor{Eigen::Vector3d(0, 0, 0)};
+  FullOrderSolver solver(rope, anchor, GeneralizedAlpha::fromRhoInf(0.9), h);
+  CoupledState s = solver.solveSwingEquilibrium(0.0, 0.0);
+  s.v.segment<3>(rope.positionIndex(rope.nodes() - 1)) = Eigen::Vector3d(0.0, 0.0, 3.0);
+  solver.initializeAccelerations(s);
+  const SparseMatrix& M = rope.massMatrix();
+  long checked = 0;
+  double dissipated = 0.0, worst = 0.0, worst_move = 0.0;
+  for (int k = 0; k < 2000; ++k) {
+    const CoupledState a = s;
+    const long before = solver.energyConsistentSteps();
+    solver.step(s);
+    if (solver.energyConsistentSteps() == before) continue;
+    ++checked;
+    const Eigen::VectorXd dv = s.v - a.v;
+    const double loss = theta * dv.dot(M * dv);
+    const double dE = solver.energy(s) - solver.energy(a);
+    dissipated += loss;
+    // Round-off of energies of about 1e4 J (the payload's potential energy).
+    worst = std::max(worst, std::abs(dE + loss) / (1e-12 * std::abs(solver.energy(a)) + 1e-9));
+    const Eigen::VectorXd move = s.q - a.q - h * ((0.5 + theta) * s.v + (0.5 - theta) * a.v);
+    worst_move = std::max(worst_move, move.cwiseAbs().maxCoeff());
+  }
+  std::printf(
+      "%ld energy-consistent steps dissipated %.3g J; worst energy error %.3g of its "
+      "bound, position update %.3g m\n",
+      checked, dissipated, worst, worst_move);
+  EXPECT_GT(checked, 10) << "the rope never switched: it tests nothing";
+  EXPECT_GT(dissipated, 0.0);
+  EXPECT_LT(worst, 1.0);
+  EXPECT_LT(worst_move, 1e-12);
+}

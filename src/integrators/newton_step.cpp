@@ -53,7 +53,7 @@ double constraintError(const RopeSupport& support, const CoupledState& s) {
 
 bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSettings& newton,
                 double h, const RopeIncrement& increment, CoupledState& s, std::string& why,
-                const Eigen::VectorXd* support_start_residual, NewtonMemory* memory) {
+                const Eigen::VectorXd* support_means_z0, NewtonMemory* memory) {
   const int m = support.size();
   NewtonWeights w;
   w.mass = ga.massWeight();
@@ -63,7 +63,8 @@ bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSe
   const CoupledState start = s;
   ga.predict(h, start.qdd, start.a, s.q, s.v);
   if (m > 0) ga.predict(h, start.zdd, start.za, s.z, s.zd);
-  w.G = support.setIterationWeights(w.mass, w.damping, bh2);
+  w.G = support_means_z0 ? support.setIterationWeights(1.0, ga.beta * h, 0.5 * bh2)
+                         : support.setIterationWeights(w.mass, w.damping, bh2);
   // The step's time for a failure's message (formatted only then: it cost 2 % of a reduced step).
   const auto at = [&] { return "t = " + std::to_string(start.t + h) + " s"; };
   Eigen::VectorXd Azr, dq;
@@ -73,9 +74,12 @@ bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSe
   double step_constant = -1.0;  // largest d_k / d_(k-1)^2 so far (negative: none yet)
   for (int it = 0; it < newton.max_iterations; ++it) {
     if (m > 0) {
-      rz = -bh2 *
-           (support.internalForce(s.z, s.zd, s.zdd) - support.pointForceToCoordinates(s.lambda));
-      if (support_start_residual) rz -= bh2 * *support_start_residual;
+      // The support's equation at the step's end, or at an energy-consistent step's means.
+      const Eigen::VectorXd f = support_means_z0
+                                    ? support.internalForce(0.5 * (*support_means_z0 + s.z),
+                                                            (s.z - *support_means_z0) / h, s.zdd)
+                                    : support.internalForce(s.z, s.zd, s.zdd);
+      rz = -bh2 * (f - support.pointForceToCoordinates(s.lambda));
     }
     const Eigen::Vector3d rc =
         condenseSupport(support, -(s.q.head<3>() - support.point(s.z)), rz, Azr);

@@ -84,13 +84,13 @@ void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& 
                                double massWeight, double stiffWeight, double dampWeight,
                                const Eigen::Matrix3d& G, Eigen::VectorXd& Q,
                                const CoupledState* from, bool matrix) {
-  // An energy-consistent step: the damper acts at the step's midpoint (q_m, v_m), where its
-  // work v_m . Q_d h = h int c EA eps'^2 dx >= 0 is a dissipation; d/dv of twice that force is
-  // C_d(q_m) (v_m = (v0 + v) / 2).
+  // An energy-consistent step: the damper acts at the step's midpoint q_m and its own mean
+  // velocity v_m = (q - q0) / h, where its work v_m . Q_d h = h int c EA eps'^2 dx >= 0 is a
+  // dissipation; d/dq of that force is C_d(q_m) / h.
   Eigen::VectorXd qm, vm;
   if (from) {
     qm = 0.5 * (from->q + q);
-    vm = 0.5 * (from->v + v);
+    vm = (q - from->q) / ec_step_;
   }
   const Eigen::VectorXd& qd = from ? qm : q;
   const Eigen::VectorXd& vd = from ? vm : v;
@@ -434,49 +434,45 @@ bool FullOrderSolver::lawBranchesAsAtMatrix(const Eigen::VectorXd& q) const {
          ground_->penetration(q.segment<3>(e)) <= 0.0;
 }
 
-// The energy-consistent step (docs/model.md "Energy-consistent step"): the trapezoidal rule
-// (Newmark, gamma = 1/2, beta = 1/4) with the rope's force at the step's end replaced by
-//   Qt_1 = 2 Qbar(q0, q1) - Qt_0,   Qt_0 = F - M q''_0 - C_q^T lambda_0,
-// Qbar the discrete gradient of the elastic energy plus the damper at the midpoint. Then
-//   M (v1 - v0) / h = M (q''_0 + q''_1) / 2 = F - Qbar - C_q^T (lambda_0 + lambda_1) / 2,
-//   q1 - q0 = h (v0 + v1) / 2,
-// so the elastic forces' work equals U(q1) - U(q0), the damper dissipates, and the constraint
-// force does no work (C is linear and holds at both ends). The support, linear, keeps its
-// equations at both ends, which the trapezoidal rule turns into the same midpoint balance.
+// The energy-consistent step (docs/model.md "Energy-consistent step", energyConsistentScheme):
+//   M (v1 - v0) / h = F - Qbar(q0, q1) - Q_d(q_m, (q1 - q0) / h) - C_q^T lambda,
+//   q1 - q0 = h ((1/2 + theta) v1 + (1/2 - theta) v0),
+// Qbar the discrete gradient of the elastic energy, the damper at the midpoint and the step's own
+// mean velocity, lambda the step's mean constraint force, and the support at the same means
+// (newtonStep). The elastic forces' work equals U(q1) - U(q0), the damper dissipates, the
+// constraint force does no work (C is linear and holds at both ends), and the kinetic energy
+// changes by the work less theta dv^T M dv.
 bool FullOrderSolver::energyConsistentStep(CoupledState& s, double h, std::string& why) {
   const int n = rope_.dofs();
   const SparseMatrix& M = rope_.massMatrix();
-  // The trapezoidal rule's acceleration-like variables are the accelerations.
-  s.a = s.qdd;
-  s.za = s.zdd;
+  const GeneralizedAlpha scheme = energyConsistentScheme(h);
   const CoupledState start = s;
   const int points = rope_.element().gauss_points;
   step_start_.resize(static_cast<std::size_t>(rope_.elements() * points));
   for (int k = 0; k < rope_.elements(); ++k)
     ancfElementStepStart(rope_.element(), start.q.segment<12>(6 * k), &step_start_[k * points]);
-  Eigen::VectorXd Qt0 = rope_.gravityForce() - M * start.qdd;
-  Qt0.head<3>() -= start.lambda;
-  Eigen::VectorXd r0z;
-  if (support_.size() > 0) {
-    r0z = support_.internalForce(start.z, start.zd, start.zdd) -
-          support_.pointForceToCoordinates(start.lambda);
-  }
+  startEnergyConsistentStep(s);
+  ec_step_ = h;
   Eigen::VectorXd Q;
   const RopeIncrement increment = [&](const CoupledState& x, const NewtonWeights& w,
                                       const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
                                       Eigen::Vector3d& dmu, std::string& reason) {
-    assemble(x.q, x.v, w.mass, w.stiffness, w.damping, w.G, Q, &start, !w.keep_matrix);
+    // d Qbar / d q1 is half the stand-in (the tangent at q1 = q0); the damper's velocity moves
+    // by dq / h.
+    assemble(x.q, x.v, w.mass, 0.5 * w.stiffness, scheme.beta * h, w.G, Q, &start, !w.keep_matrix);
     Eigen::VectorXd rhs(n + 3);
-    rhs.head(n) = -w.stiffness * (M * x.qdd + 2.0 * Q - Qt0 - rope_.gravityForce());
+    rhs.head(n) = -w.stiffness * (M * x.qdd + Q - rope_.gravityForce());
     rhs.head<3>() -= w.stiffness * x.lambda;
     rhs.tail<3>() = rc;
     return solveIncrement(rhs, dq, dmu, reason, !w.keep_matrix);
   };
-  if (!newtonStep(GeneralizedAlpha::newmark(), support_, newton_, h, increment, s, why,
-                  support_.size() > 0 ? &r0z : nullptr)) {
+  const Eigen::VectorXd& z0 = start.z;
+  if (!newtonStep(scheme, support_, newton_, h, increment, s, why,
+                  support_.size() > 0 ? &z0 : nullptr)) {
+    s = start;
     return false;
   }
-  keepEnergyConsistentMeans(start, h, s);
+  keepEnergyConsistentMeans(s);
   return true;
 }
 

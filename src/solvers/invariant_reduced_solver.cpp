@@ -507,8 +507,7 @@ bool InvariantReducedSolver::tryStep(CoupledState& s, double h, std::string& why
 bool InvariantReducedSolver::newton(
     const GeneralizedAlpha& scheme, double h,
     const std::function<Eigen::VectorXd(const CoupledState&)>& residual, CoupledState& s,
-    std::string& why, const Eigen::VectorXd* support_start_residual,
-    const Eigen::VectorXd* secant_from) {
+    std::string& why, const Eigen::VectorXd* support_means_z0, const Eigen::VectorXd* secant_from) {
   const int n = n_;
   int iterations = 0;
   double residual_min_stretch = -1.0, last_correction = 0.0;
@@ -527,13 +526,15 @@ bool InvariantReducedSolver::newton(
       contact_changed = (contact_K_ - fact_contact_K_).norm() > 1e-3 * scale ||
                         (contact_C_ - fact_contact_C_).norm() > 1e-3 * cscale;
     }
+    // An energy-consistent step's d Qbar / dy1 is half the stand-in (twice the secant's slope).
+    const double ks = secant_from ? 0.5 : 1.0;
     const bool stale =
-        contact_changed || !factored_ || w.mass != fact_a_ || w.damping != fact_c_ ||
-        w.stiffness != fact_k_ || (w.G - fact_G_).norm() > kSupportChange * fact_G_.norm() ||
+        contact_changed || !factored_ || w.mass != fact_a_ || ks * w.damping != fact_c_ ||
+        ks * w.stiffness != fact_k_ || (w.G - fact_G_).norm() > kSupportChange * fact_G_.norm() ||
         std::abs(L_ - fact_L_) > kLengthChange * L_ || (chord(x.q) - fact_d_).norm() > kChordTurn ||
         (iterations == 0 && last_iterations_ >= kSlowIterations) ||
         (iterations > 0 && iterations % kSlowIterations == 0) || barChanged(x.q);
-    if (stale && !factorize(w.mass, w.damping, w.stiffness, w.G, x.q, secant_from)) {
+    if (stale && !factorize(w.mass, ks * w.damping, ks * w.stiffness, w.G, x.q, secant_from)) {
       reason = "singular reduced iteration matrix";
       return false;
     }
@@ -550,8 +551,7 @@ bool InvariantReducedSolver::newton(
     return true;
   };
   last_force_min_stretch_ = -1.0;  // set by force(): a residual without it records no bound
-  const bool ok =
-      newtonStep(scheme, support_, newton_, h, increment, s, why, support_start_residual);
+  const bool ok = newtonStep(scheme, support_, newton_, h, increment, s, why, support_means_z0);
   // A lower bound of the end state's smallest stretch: the last residual's, less what the last
   // correction can change it by (|dr_x| <= sum_k |psi_k'| |da_k| / L <= sqrt(3) S |dq|_inf / L).
   if (ok && residual_min_stretch > 0.0) {
@@ -577,37 +577,33 @@ bool InvariantReducedSolver::generalizedAlphaStep(CoupledState& s, double h, std
   return newton(ga_, h, residual, s, why, nullptr, nullptr);
 }
 
-// The energy-consistent step (header; FullOrderSolver::energyConsistentStep at full order): the
-// trapezoidal rule with the rope's force at the step's end 2 Qbar(y0, y1) - Qt_0,
-// Qt_0 = F_r - M_r y''_0 - E^T lambda_0, so that
-//   M_r (y''_0 + y''_1) / 2 = F_r - Qbar - E^T (lambda_0 + lambda_1) / 2.
+// The energy-consistent step (header; FullOrderSolver::energyConsistentStep at full order),
+// energyConsistentScheme:
+//   M_r (v1 - v0) / h = F_r - Qbar(y0, y1) - E^T lambda,
+//   y1 - y0 = h ((1/2 + theta) v1 + (1/2 - theta) v0),
+// lambda the step's mean constraint force and the support at the step's means (newtonStep).
 bool InvariantReducedSolver::energyConsistentStep(CoupledState& s, double h, std::string& why) {
-  s.a = s.qdd;
-  s.za = s.zdd;
   const CoupledState start = s;
+  startEnergyConsistentStep(s);
   const Eigen::VectorXd applied = appliedForce();
-  Eigen::VectorXd Qt0 = applied - massTimes(start.qdd);
-  Qt0.head<3>() -= start.lambda;
-  Eigen::VectorXd r0z;
-  if (support_.size() > 0) {
-    r0z = support_.internalForce(start.z, start.zd, start.zdd) -
-          support_.pointForceToCoordinates(start.lambda);
-  }
   const auto residual = [&](const CoupledState& x) -> Eigen::VectorXd {
-    return massTimes(x.qdd) + 2.0 * discreteGradientForce(start, x.q, x.v) - Qt0 - applied;
+    return massTimes(x.qdd) + discreteGradientForce(start, x.q, x.v, h) - applied;
   };
   ec_start_ = &start;
-  const bool ok = newton(GeneralizedAlpha::newmark(), h, residual, s, why,
-                         support_.size() > 0 ? &r0z : nullptr, &start.q);
+  const bool ok = newton(energyConsistentScheme(h), h, residual, s, why, &start.z, &start.q);
   ec_start_ = nullptr;
-  if (!ok) return false;
-  keepEnergyConsistentMeans(start, h, s);
+  if (!ok) {
+    s = start;
+    return false;
+  }
+  keepEnergyConsistentMeans(s);
   return true;
 }
 
 Eigen::VectorXd InvariantReducedSolver::discreteGradientForce(const CoupledState& start,
                                                               const Eigen::VectorXd& y1,
-                                                              const Eigen::VectorXd& v1) const {
+                                                              const Eigen::VectorXd& v1,
+                                                              double h) const {
   const double EA = rope_.axialStiffnessAt(L_), EI = rope_.element().bending_stiffness;
   const bool tension_only = rope_.element().tension_only;
   const double le = L_ / rope_.elements();  // the element length weighs Gonzalez's correction
@@ -630,7 +626,8 @@ Eigen::VectorXd InvariantReducedSolver::discreteGradientForce(const CoupledState
     rope_.rigging().discreteGradientForce(barCoordinates(start.q), barCoordinates(y1), Qb);
     addBarForce(Qb, Q);
   }
-  if (damping_ > 0.0) Q += dampingForce(0.5 * (start.q + y1), 0.5 * (start.v + v1));
+  // The damper at the midpoint and the step's own mean velocity (y1 - y0) / h (a dissipation).
+  if (damping_ > 0.0) Q += dampingForce(0.5 * (start.q + y1), (y1 - start.q) / h);
   if (ground_) {
     Q += contactForce(
         ground_->stepMeanForce(endPoint(start.q), endPoint(y1), endPoint(start.v), endPoint(v1)).f);

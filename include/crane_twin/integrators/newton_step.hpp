@@ -86,18 +86,18 @@ using RopeIncrement =
 /// One generalized-alpha step of size h from s: predictor, Newton corrections through
 /// `increment`, and step completion. False, with s at the step's start and the reason (with the
 /// time) in `why`, where the iteration fails (singular matrix, non-finite state, no
-/// convergence in newton.max_iterations). With `support_start_residual` r0 (the trapezoidal rule
-/// only), the support's equation at the step's end becomes
-///   M_z z''_1 + C_z z'_1 + K_z z_1 - f_z - D^T lambda_1 + r0 = 0,
-/// r0 = M_z z''_0 + C_z z'_0 + K_z z_0 - f_z - D^T lambda_0 the start's residual, so that its
-/// mean over the step, M_z (z'_1 - z'_0) / h + C_z z'_m + K_z z_m - f_z = D^T (lambda_0 +
-/// lambda_1) / 2, holds whatever the start's z''_0 and lambda_0 (the midpoint balance of an
-/// energy-consistent step, whose start holds step means). With `memory`, the first correction
-/// may keep its matrix (see above) and the step's contraction is recorded there.
+/// convergence in newton.max_iterations). With `support_means_z0` z_0, the start of an
+/// energy-consistent step (gamma = 1 from z''_0 = 0, energyConsistentScheme), the support's
+/// equation holds at the step's means instead of its end:
+///   M_z z''_1 + C_z (z_1 - z_0) / h + K_z (z_0 + z_1) / 2 - f_z = D^T lambda,
+/// z''_1 = (z'_1 - z'_0) / h and lambda the step's mean constraint force, so that with
+/// K_z z_m the support's elastic work is its energy change and C_z at the step's own mean
+/// velocity only dissipates (docs/model.md "Energy-consistent step"); its iteration matrix is
+/// then M_z + beta h C_z + beta h^2 / 2 K_z. With `memory`, the first correction may keep its
+/// matrix (see above) and the step's contraction is recorded there.
 bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSettings& newton,
                 double h, const RopeIncrement& increment, CoupledState& s, std::string& why,
-                const Eigen::VectorXd* support_start_residual = nullptr,
-                NewtonMemory* memory = nullptr);
+                const Eigen::VectorXd* support_means_z0 = nullptr, NewtonMemory* memory = nullptr);
 
 /// The support's rows eliminated from a linear solve (its Schur complement): returns the
 /// condensed constraint row rc + D A_z^-1 r_z and A_z^-1 r_z in Azr, for the weights last set

@@ -4,11 +4,11 @@
 //    of its ends (the trapezoid work error of the axial law at the switching points is exactly
 //    0), or where that error is within `tolerance` (not asked of a hoisting step, whose uniform
 //    rescaling shifts every strain before it) and the run's created energy stays within it;
-//  - any other step is taken energy-consistently (the trapezoidal rule with the discrete
-//    gradient); the episode goes on while such a step still switches, hoisting or not, and
-//    generalized-alpha resumes from consistent accelerations once it does not (a restart after
-//    every switching step of a hoisting run raised the energy at each, which the hoist's pull
-//    on a bouncing rope fed: docs/model.md "Energy-consistent step").
+//  - any other step is taken energy-consistently (the discrete gradient in a scheme whose
+//    energy can only fall, energyConsistentScheme); the episode goes on while such a step still
+//    switches, hoisting or not, and generalized-alpha resumes from consistent accelerations once it
+//    does not (a restart after every switching step of a hoisting run raised the energy at each,
+//    which the hoist's pull on a bouncing rope fed: docs/model.md "Energy-consistent step").
 #pragma once
 
 #include <Eigen/Dense>
@@ -16,6 +16,7 @@
 #include <string>
 
 #include "crane_twin/integrators/coupled_state.hpp"
+#include "crane_twin/integrators/generalized_alpha.hpp"
 
 namespace crane_twin {
 
@@ -55,12 +56,27 @@ struct TensionOnlySwitching {
 bool tensionOnlyStep(const TensionOnlyRope& rope, double tolerance, bool hoisting,
                      TensionOnlySwitching& memory, CoupledState& s, double h, std::string& why);
 
-/// Close an energy-consistent step from `start` of size h: the state keeps the step's means,
-/// lambda_m = (lambda_0 + lambda_1) / 2 (the constraint force over the step, the reported
-/// tension), q''_m = (v1 - v0) / h and z''_m likewise (the next step's predictor; a = q''). The
-/// end values would alternate from step to step where the step does not resolve the rope's
-/// axial waves; the step's bookkeeping makes the next step's balance independent of which are
-/// kept.
-void keepEnergyConsistentMeans(const CoupledState& start, double h, CoupledState& s);
+/// The energy-consistent step's decay rate kappa [1/s]: theta = kappa h (energyConsistentScheme;
+/// 200 and 400 were no faster on the falling rope and further from its eighth step,
+/// docs/accuracy-vs-time.md "Attempts").
+constexpr double kEnergyDecayRate = 100.0;
+
+/// The energy-consistent step's scheme (docs/model.md "Energy-consistent step"):
+///   M (v1 - v0) / h = F - Qbar(q0, q1) - C_q^T lambda,
+///   q1 - q0 = h ((1/2 + theta) v1 + (1/2 - theta) v0),   theta = kEnergyDecayRate h,
+/// written as Newmark's gamma = 1, beta = 1/2 + theta from a start with q''_0 = a_0 = 0
+/// (startEnergyConsistentStep), whose q''_1 is the step's mean acceleration (v1 - v0) / h.
+/// With Qbar a discrete gradient, the energy changes by exactly -theta (v1 - v0)^T M (v1 - v0)
+/// (and the support's likewise) beyond the dampers' dissipation: it never rises, and the velocity
+/// jumps of the axial waves the step does not resolve decay, at second order in h.
+GeneralizedAlpha energyConsistentScheme(double h);
+
+/// The scheme's start: the acceleration-like variables set to 0 (its predictor q0 + h v0).
+void startEnergyConsistentStep(CoupledState& s);
+
+/// Close the step: the state keeps its means, q'' = (v1 - v0) / h (a = q'', z'' and za likewise)
+/// and lambda the step's mean constraint force (the reported tension); generalized-alpha's
+/// restart after an episode recomputes consistent accelerations.
+void keepEnergyConsistentMeans(CoupledState& s);
 
 }  // namespace crane_twin

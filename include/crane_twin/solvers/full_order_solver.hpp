@@ -80,9 +80,10 @@ class FullOrderSolver {
   /// (AncfRope::slackSwitchWorkError within kSwitchTolerance of the hanging weight times the
   /// rope length; not asked of a hoisting step, whose uniform rescaling shifts every strain
   /// before it) and keeps the run's sum of ropeEnergyCreated within that tolerance. Any other
-  /// step is taken energy-consistently: the trapezoidal rule with the discrete gradient of the
-  /// elastic energy, whose elastic work equals the energy change exactly. Such steps follow each
-  /// other while the rope keeps switching; the first one without a switch restores consistent
+  /// step is taken energy-consistently (energyConsistentScheme): the discrete gradient of the
+  /// elastic energy, whose elastic work equals the energy change exactly, in a scheme whose
+  /// energy falls by theta (v1 - v0)^T M (v1 - v0), theta = kEnergyDecayRate h. Such steps follow
+  /// each other while the rope keeps switching; the first one without a switch restores consistent
   /// accelerations and hands back to generalized-alpha.
   void step(CoupledState& s);
   static constexpr int kMaxHalvings = 10;
@@ -153,6 +154,7 @@ class FullOrderSolver {
   // One generalized-alpha step, or one energy-consistent step (see step()).
   bool generalizedAlphaStep(CoupledState& s, double h, std::string& why);
   bool energyConsistentStep(CoupledState& s, double h, std::string& why);
+  double ec_step_ = 0.0;  ///< the running energy-consistent step's size h [s] (assemble)
   // Factorise A_ (unless `refactorize` is false: the last factorisation) and solve it for rhs:
   // dq and dmu; false (reason set) where A_ is singular.
   bool solveIncrement(const Eigen::VectorXd& rhs, Eigen::VectorXd& dq, Eigen::Vector3d& dmu,

@@ -29,10 +29,10 @@
 // A tension-only rope (docs/model.md "Energy-consistent step"): full order's rule
 // (integrators/tension_only_step.hpp). A step in which a Gauss point of the reduced rule crosses
 // the slack edge with a work error above the switch tolerance, or that would create energy, is
-// taken by the energy-consistent step: the trapezoidal rule with the rope's force at the step's
-// end replaced by 2 Qbar(y0, y1) - Qt_0, Qbar the discrete gradient of U(B y) at the reduced
-// Gauss points (ancfCablePointDiscreteGradient) plus the damper at the midpoint, so the elastic
-// forces' work equals U(B y1) - U(B y0) and a slack/taut switch creates no energy.
+// taken by the energy-consistent step (energyConsistentScheme, as at full order): Qbar the
+// discrete gradient of U(B y) at the reduced Gauss points (ancfCablePointDiscreteGradient) plus
+// the damper at the midpoint, so the elastic forces' work equals U(B y1) - U(B y0), a slack/taut
+// switch creates no energy, and the step's velocity jumps lose theta dv^T M_r dv.
 // Generalized-alpha resumes once a step no longer switches.
 //
 // With a rigging (AncfRope::setRigging, docs/model.md "Hook block"), y = [a; r_p]: the payload
@@ -130,10 +130,11 @@ class InvariantReducedSolver {
   /// Reduced elastic (and damping) force Q_r(y, y') and the elastic energy U(B y) [J].
   Eigen::VectorXd force(const Eigen::VectorXd& y, const Eigen::VectorXd& yd) const;
   double elasticEnergy(const Eigen::VectorXd& y) const;
-  /// Discrete gradient of U(B y) over y0 -> y1 plus the damper at the midpoint (v0, v1 the
-  /// velocities): Qbar . (y1 - y0) = U(B y1) - U(B y0) + the damper's work.
+  /// Discrete gradient of U(B y) over y0 -> y1 of a step of size h [s], plus the damper at the
+  /// midpoint and the step's mean velocity (y1 - y0) / h, and the ground's step mean (v1 the
+  /// end velocity): Qbar . (y1 - y0) = U(B y1) - U(B y0) + the damper's work.
   Eigen::VectorXd discreteGradientForce(const CoupledState& start, const Eigen::VectorXd& y1,
-                                        const Eigen::VectorXd& v1) const;
+                                        const Eigen::VectorXd& v1, double h) const;
   /// Trapezoid work error of the tension-only axial law over y0 -> y1, summed over the reduced
   /// Gauss points (ancfAxialSwitchWorkError) [J]; 0 for a rope taut at both ends of the step.
   double slackSwitchWorkError(const Eigen::VectorXd& y0, const Eigen::VectorXd& y1) const;
@@ -176,7 +177,7 @@ class InvariantReducedSolver {
   // secant_from the step's start for an energy-consistent step's matrix.
   bool newton(const GeneralizedAlpha& scheme, double h,
               const std::function<Eigen::VectorXd(const CoupledState&)>& residual, CoupledState& s,
-              std::string& why, const Eigen::VectorXd* support_start_residual,
+              std::string& why, const Eigen::VectorXd* support_means_z0,
               const Eigen::VectorXd* secant_from);
   // The work the rope gains over a step beyond the top force's and the damper's [J].
   double ropeEnergyCreated(const CoupledState& start, const CoupledState& s) const;
