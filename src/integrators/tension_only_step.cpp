@@ -47,9 +47,4 @@ void startEnergyConsistentStep(CoupledState& s) {
   }
 }
 
-void keepEnergyConsistentMeans(CoupledState& s) {
-  s.a = s.qdd;
-  if (s.z.size() > 0) s.za = s.zdd;
-}
-
 }  // namespace crane_twin

@@ -472,7 +472,6 @@ bool FullOrderSolver::energyConsistentStep(CoupledState& s, double h, std::strin
     s = start;
     return false;
   }
-  keepEnergyConsistentMeans(s);
   return true;
 }
 

@@ -596,7 +596,6 @@ bool InvariantReducedSolver::energyConsistentStep(CoupledState& s, double h, std
     s = start;
     return false;
   }
-  keepEnergyConsistentMeans(s);
   return true;
 }
 

@@ -65,7 +65,9 @@ constexpr double kEnergyDecayRate = 100.0;
 ///   M (v1 - v0) / h = F - Qbar(q0, q1) - C_q^T lambda,
 ///   q1 - q0 = h ((1/2 + theta) v1 + (1/2 - theta) v0),   theta = kEnergyDecayRate h,
 /// written as Newmark's gamma = 1, beta = 1/2 + theta from a start with q''_0 = a_0 = 0
-/// (startEnergyConsistentStep), whose q''_1 is the step's mean acceleration (v1 - v0) / h.
+/// (startEnergyConsistentStep), whose q''_1 is the step's mean acceleration (v1 - v0) / h; the
+/// step's completion (newtonStep, alpha_m = alpha_f = 0) leaves a = q'' and za = z'', and lambda
+/// is the step's mean constraint force (the reported tension).
 /// With Qbar a discrete gradient, the energy changes by exactly -theta (v1 - v0)^T M (v1 - v0)
 /// (and the support's likewise) beyond the dampers' dissipation: it never rises, and the velocity
 /// jumps of the axial waves the step does not resolve decay, at second order in h.
@@ -73,10 +75,5 @@ GeneralizedAlpha energyConsistentScheme(double h);
 
 /// The scheme's start: the acceleration-like variables set to 0 (its predictor q0 + h v0).
 void startEnergyConsistentStep(CoupledState& s);
-
-/// Close the step: the state keeps its means, q'' = (v1 - v0) / h (a = q'', z'' and za likewise)
-/// and lambda the step's mean constraint force (the reported tension); generalized-alpha's
-/// restart after an episode recomputes consistent accelerations.
-void keepEnergyConsistentMeans(CoupledState& s);
 
 }  // namespace crane_twin
