@@ -1,6 +1,7 @@
 #include "crane_twin/rope/ancf_rope.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -25,8 +26,14 @@ AncfRope::AncfRope(int elements, double length, double mass_per_length, double a
   assembleMass();
 }
 
+std::uint64_t AncfRope::nextRevision() {
+  static std::atomic<std::uint64_t> next{1};
+  return next.fetch_add(1, std::memory_order_relaxed);
+}
+
 void AncfRope::setLength(double length) {
   if (!(length > 0.0)) throw std::invalid_argument("rope length must be positive");
+  revision_ = nextRevision();
   element_.length = length / elements_;
   element_.axial_stiffness = axialStiffnessAt(length);
   // In place (hoisting changes the length every step): the element mass int rho A S^T S dx
@@ -46,6 +53,7 @@ void AncfRope::setReevingLength(double equivalent_length) {
   }
   reeving_length_ = equivalent_length;
   element_.axial_stiffness = axialStiffnessAt(length());
+  revision_ = nextRevision();
 }
 
 double AncfRope::minNodalStrain(const Eigen::VectorXd& q) {
@@ -147,6 +155,7 @@ void AncfRope::setExternalLoad(const Eigen::Vector3d& per_length,
   ext_per_length_ = per_length;
   ext_end_ = end_force;
   updateGravityForce();
+  revision_ = nextRevision();
 }
 
 void AncfRope::elasticForce(const Eigen::VectorXd& q, Eigen::VectorXd& Q,
@@ -266,6 +275,7 @@ void AncfRope::setRigging(double length, double hook_mass, double mass_per_lengt
   rigging_->setTensionOnly(true);
   hook_mass_ = hook_mass;
   assembleMass();
+  revision_ = nextRevision();
 }
 
 std::vector<Eigen::Vector3d> AncfRope::sampleCurve(const Eigen::VectorXd& q, int per_element,

@@ -343,16 +343,14 @@ void FullOrderSolver::step(CoupledState& s) {
 double FullOrderSolver::ropeEnergyCreated(const CoupledState& start, const CoupledState& s) const {
   // The rope's own energy E_r = 1/2 v^T M v + U(q) - F^T q changes by the work of the top force,
   // -lambda . dr_0 (trapezoid in time), less the damper's dissipation (at the midpoint).
-  const SparseMatrix& M = rope_.massMatrix();
-  const Eigen::VectorXd& F = rope_.gravityForce();
   const int e = rope_.positionIndex(rope_.nodes() - 1);
   const auto ropeEnergy = [&](const CoupledState& x) {
     const double ground = ground_ ? ground_->energy(x.q.segment<3>(e)) : 0.0;
-    return 0.5 * x.v.dot(M * x.v) + rope_.elasticEnergy(x.q) - F.dot(x.q) + ground;
+    return ropeOwnEnergy(x) + ground;
   };
   const Eigen::VectorXd dq = s.q - start.q;
-  double created =
-      ropeEnergy(s) - ropeEnergy(start) + 0.5 * (start.lambda + s.lambda).dot(dq.head<3>());
+  const double before = ropeEnergy(start);  // first: the start is the remembered state
+  double created = ropeEnergy(s) - before + 0.5 * (start.lambda + s.lambda).dot(dq.head<3>());
   if (ground_) {
     // Less the work of the ground's damper and friction (at the midpoint, <= 0).
     const Eigen::Vector3d rm = 0.5 * (start.q.segment<3>(e) + s.q.segment<3>(e));
@@ -376,6 +374,20 @@ double FullOrderSolver::ropeEnergyCreated(const CoupledState& start, const Coupl
     }
   }
   return created;
+}
+
+// E_r = 1/2 v^T M v + U(q) - F^T q; the last state's value is kept, since a step's start is
+// the end of the step before, whose check computed it (the rope's revision keys it).
+double FullOrderSolver::ropeOwnEnergy(const CoupledState& x) const {
+  RopeEnergyMemo& m = rope_energy_memo_;
+  if (m.revision == rope_.revision() && m.q.size() == x.q.size() && m.q == x.q && m.v == x.v)
+    return m.value;
+  m.value = 0.5 * x.v.dot(rope_.massMatrix() * x.v) + rope_.elasticEnergy(x.q) -
+            rope_.gravityForce().dot(x.q);
+  m.revision = rope_.revision();
+  m.q = x.q;
+  m.v = x.v;
+  return m.value;
 }
 
 // A tension-only rope (see the header): the rule of integrators/tension_only_step.hpp.

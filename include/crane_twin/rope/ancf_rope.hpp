@@ -18,6 +18,7 @@
 
 #include <Eigen/Sparse>
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <vector>
 
@@ -84,7 +85,10 @@ class AncfRope {
     return rope_axial_stiffness_ * L / (L + reeving_length_);
   }
   /// `rope.tension_only` (docs/scenes.md): no axial force in compression (AncfCableProperties).
-  void setTensionOnly(bool on) { element_.tension_only = on; }
+  void setTensionOnly(bool on) {
+    element_.tension_only = on;
+    revision_ = nextRevision();
+  }
   const SparseMatrix& massMatrix() const { return M_; }
   /// The applied load vector: gravity F_g = M g_field plus the external loads below.
   const Eigen::VectorXd& gravityForce() const { return Fg_; }
@@ -117,6 +121,10 @@ class AncfRope {
   /// (0 unless tension_only; exactly 0 where the rope is taut at both ends).
   double slackSwitchWorkError(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) const;
   bool tensionOnly() const { return element_.tension_only; }
+  /// Which rope this is: a value that changes with every call that changes M, F_g or U(q) (the
+  /// setters above), drawn from a process-wide counter, so two ropes that differ never share it
+  /// (a copy shares its original's). A solver may keep values of the energy under it.
+  std::uint64_t revision() const { return revision_; }
 
   /// Node `node`'s position in a chain without a rigging (position() in general).
   static Eigen::Vector3d nodePosition(const Eigen::VectorXd& q, int node) {
@@ -152,6 +160,8 @@ class AncfRope {
   Eigen::Vector3d ext_per_length_ = Eigen::Vector3d::Zero(), ext_end_ = Eigen::Vector3d::Zero();
   std::vector<double> unit_mass_, point_mass_;  ///< per entry of M_ (setLength)
   std::vector<int> mass_exponent_;              ///< s_i + s_j per entry (0: l, 1: l^2, 2: l^3)
+  std::uint64_t revision_ = nextRevision();
+  static std::uint64_t nextRevision();
   void assembleMass();
   void updateGravityForce();
 };

@@ -26,6 +26,7 @@
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -163,6 +164,15 @@ class FullOrderSolver {
   // damper's dissipation [J] (<= 0 for a dissipative step; 0 to round-off for an
   // energy-consistent one).
   double ropeEnergyCreated(const CoupledState& start, const CoupledState& s) const;
+  // The rope's own energy E_r = 1/2 v^T M v + U(q) - F_g^T q [J] at x, remembered for the last
+  // state asked (ropeEnergyCreated asks a step's start, the step before's end, again).
+  double ropeOwnEnergy(const CoupledState& x) const;
+  struct RopeEnergyMemo {
+    std::uint64_t revision = 0;  ///< AncfRope::revision() of the value (0: none)
+    Eigen::VectorXd q, v;
+    double value = 0.0;
+  };
+  mutable RopeEnergyMemo rope_energy_memo_;
   long halved_steps_ = 0;
   long matrix_reusing_corrections_ = 0;
   /// An energy-consistent step's start at every Gauss point, element by element (the part of
