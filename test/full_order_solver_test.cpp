@@ -7,6 +7,8 @@
 
 #include <boost/math/special_functions/bessel.hpp>
 #include <fstream>
+#include <functional>
+#include <memory>
 #include <sstream>
 
 #include "crane_twin/simulation/crane_simulation.hpp"
@@ -399,12 +401,17 @@ TEST(AnchoredRope, AnEnergyConsistentStepLosesThetaTimesItsVelocityJumpAndNoMore
   EXPECT_LT(worst_move, 1e-12);
 }
 
-TEST(AnchoredRope, TheRememberedStartEnergyFollowsTheRope) {
-  // A tension-only step's energy check (FullOrderSolver::ropeEnergyCreated) takes the start's
-  // energy E_r = 1/2 v^T M v + U - F_g^T q from the step before, which computed it; a change of
-  // the rope in between (here its end force, a new F_g, every step) must be seen. A payload
-  // thrown up at 3 m/s on 10 m of tension-only rope (slack, then a snatch), stepped by one
-  // solver, against a solver built afresh for each step, which remembers nothing.
+namespace {
+// A tension-only step's checks take what they need of the step's start from the step before,
+// which computed it (FullOrderSolver: the start's energy E_r = 1/2 v^T M v + U - F_g^T q and its
+// Gauss points' axial strains); a change of the rope in between must be seen. A payload thrown up
+// at 3 m/s on 10 m of tension-only rope (slack, then a snatch), the rope changed by
+// `change(k, rope, solver)` before step k, stepped by one solver and by a run whose every step
+// is taken by a solver built afresh (continuing the last one's stepping), which remembers
+// nothing: the two must take the same decisions (which step is energy-consistent, which episode
+// goes on) and so the same path.
+void expectTheSamePathAsFreshSolvers(
+    const std::function<void(int, AncfRope&, FullOrderSolver&)>& change) {
   const double h = 1e-3;
   AncfRope rope = tensionOnlyTestRope();
   FixedAnchor anchor{Eigen::Vector3d(0, 0, 0)};
@@ -413,20 +420,44 @@ TEST(AnchoredRope, TheRememberedStartEnergyFollowsTheRope) {
   CoupledState s = stepping.solveSwingEquilibrium(0.0, 0.0);
   s.v.segment<3>(rope.positionIndex(rope.nodes() - 1)) = Eigen::Vector3d(0.0, 0.0, 3.0);
   stepping.initializeAccelerations(s);
+  CoupledState b = s;
+  auto last = std::make_unique<FullOrderSolver>(rope, anchor, ga, h);
+  last->continueSteppingOf(stepping);
+  long fresh_energy_consistent = 0;
   double largest = 0.0;
   for (int k = 0; k < 1500; ++k) {
-    // +-300 N on the 100 kg payload: F_g^T q moves by kJ, the check's tolerance is uJ.
-    rope.setExternalLoad(Eigen::Vector3d::Zero(),
-                         Eigen::Vector3d(0.0, 0.0, k % 2 ? 300.0 : -300.0));
-    FullOrderSolver fresh(rope, anchor, ga, h);
-    fresh.continueSteppingOf(stepping);
-    CoupledState b = s;
+    change(k, rope, stepping);
+    auto fresh = std::make_unique<FullOrderSolver>(rope, anchor, ga, h);
+    fresh->continueSteppingOf(*last);
     stepping.step(s);
-    fresh.step(b);
+    fresh->step(b);
+    fresh_energy_consistent += fresh->energyConsistentSteps();
     largest = std::max(largest, (s.q - b.q).cwiseAbs().maxCoeff());
+    last = std::move(fresh);
   }
   EXPECT_GT(stepping.energyConsistentSteps(), 10) << "the rope never switched: it tests nothing";
-  EXPECT_LT(largest, 1e-9) << "m between the remembering and the fresh solver's states";
-  std::printf("largest state difference %.3g m, %ld energy-consistent steps\n", largest,
-              stepping.energyConsistentSteps());
+  EXPECT_EQ(stepping.energyConsistentSteps(), fresh_energy_consistent);
+  EXPECT_LT(largest, 1e-9) << "m between the remembering and the fresh solvers' paths";
+  std::printf("largest path difference %.3g m, %ld and %ld energy-consistent steps\n", largest,
+              stepping.energyConsistentSteps(), fresh_energy_consistent);
+}
+}  // namespace
+
+TEST(AnchoredRope, TheRememberedStartEnergyFollowsTheRope) {
+  // The end force changes every step (a new F_g): +-300 N on the 100 kg payload moves F_g^T q
+  // by kJ, the energy check's tolerance is uJ.
+  expectTheSamePathAsFreshSolvers([](int k, AncfRope& rope, FullOrderSolver&) {
+    rope.setExternalLoad(Eigen::Vector3d::Zero(),
+                         Eigen::Vector3d(0.0, 0.0, k % 2 ? 300.0 : -300.0));
+  });
+}
+
+TEST(AnchoredRope, TheRememberedStrainsFollowTheRopesLength) {
+  // A hoist rescales every element, and so every strain at the same coordinates: the rope
+  // 10 m +- 1 cm every third step.
+  expectTheSamePathAsFreshSolvers([](int k, AncfRope& rope, FullOrderSolver& solver) {
+    if (k % 3 != 0) return;
+    rope.setLength(k % 2 ? 10.01 : 9.99);
+    solver.refreshMass();
+  });
 }

@@ -412,15 +412,26 @@ double ancfAxialSwitchWorkError(double EA, double eps0, double eps1) {
 double ancfSlackSwitchWorkError(const AncfCableProperties& p, const Vector12& e0,
                                 const Vector12& e1) {
   if (!p.tension_only) return 0.0;
+  double eps0[kMaxGaussPoints], eps1[kMaxGaussPoints];
+  ancfAxialStrains(p, e0, eps0);
+  ancfAxialStrains(p, e1, eps1);
+  return ancfSlackSwitchWorkError(p, eps0, eps1);
+}
+
+double ancfSlackSwitchWorkError(const AncfCableProperties& p, const double* eps0,
+                                const double* eps1) {
+  if (!p.tension_only) return 0.0;
   const GaussRule& gr = gaussRule(p.gauss_points);
-  const double EA = p.axial_stiffness, l = p.length;
   double err = 0.0;
-  for (int q = 0; q < gr.x.size(); ++q) {
-    const Eigen::Vector4d sx = ancfShapeDx(gr.x(q), l);
-    const double eps0 = combine(sx, e0).norm() - 1.0, eps1 = combine(sx, e1).norm() - 1.0;
-    err += gr.w(q) * l * ancfAxialSwitchWorkError(EA, eps0, eps1);
-  }
+  for (int q = 0; q < gr.x.size(); ++q)
+    err += gr.w(q) * p.length * ancfAxialSwitchWorkError(p.axial_stiffness, eps0[q], eps1[q]);
   return err;
+}
+
+void ancfAxialStrains(const AncfCableProperties& p, const Vector12& e, double* eps) {
+  const GaussRule& gr = gaussRule(p.gauss_points);
+  for (int q = 0; q < gr.x.size(); ++q)
+    eps[q] = combine(ancfShapeDx(gr.x(q), p.length), e).norm() - 1.0;
 }
 
 void ancfAxialDampingForce(const AncfCableProperties& p, double c, const Vector12& e,

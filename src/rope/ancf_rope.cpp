@@ -213,6 +213,30 @@ double AncfRope::slackSwitchWorkError(const Eigen::VectorXd& q0, const Eigen::Ve
   for (int k = 0; k < elements_; ++k) {
     err += ancfSlackSwitchWorkError(element_, q0.segment<12>(6 * k), q1.segment<12>(6 * k));
   }
+  return err + riggingSwitchWorkError(q0, q1);
+}
+
+double AncfRope::slackSwitchWorkError(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
+                                      const Eigen::VectorXd& eps0,
+                                      const Eigen::VectorXd& eps1) const {
+  if (!element_.tension_only) return 0.0;
+  const int g = element_.gauss_points;
+  double err = 0.0;
+  for (int k = 0; k < elements_; ++k)
+    err += ancfSlackSwitchWorkError(element_, eps0.data() + g * k, eps1.data() + g * k);
+  return err + riggingSwitchWorkError(q0, q1);
+}
+
+void AncfRope::axialStrains(const Eigen::VectorXd& q, Eigen::VectorXd& eps) const {
+  const int g = element_.gauss_points;
+  eps.resize(elements_ * g);
+  for (int k = 0; k < elements_; ++k)
+    ancfAxialStrains(element_, q.segment<12>(6 * k), eps.data() + g * k);
+}
+
+double AncfRope::riggingSwitchWorkError(const Eigen::VectorXd& q0,
+                                        const Eigen::VectorXd& q1) const {
+  double err = 0.0;
   if (hasRigging()) {
     const int n = 6 * elements_;
     Vector6 b0, b1;

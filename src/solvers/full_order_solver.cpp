@@ -390,6 +390,23 @@ double FullOrderSolver::ropeOwnEnergy(const CoupledState& x) const {
   return m.value;
 }
 
+const Eigen::VectorXd& FullOrderSolver::axialStrainsAt(const Eigen::VectorXd& q) const {
+  for (int i : {strain_memo_last_, 1 - strain_memo_last_}) {
+    const StrainMemo& m = strain_memo_[i];
+    if (m.revision == rope_.revision() && m.q.size() == q.size() && m.q == q) {
+      strain_memo_last_ = i;
+      return m.eps;
+    }
+  }
+  // Replace the entry not asked last, so that two calls in a row never evict each other.
+  strain_memo_last_ = 1 - strain_memo_last_;
+  StrainMemo& m = strain_memo_[strain_memo_last_];
+  rope_.axialStrains(q, m.eps);
+  m.q = q;
+  m.revision = rope_.revision();
+  return m.eps;
+}
+
 // A tension-only rope (see the header): the rule of integrators/tension_only_step.hpp.
 bool FullOrderSolver::tryStep(CoupledState& s, double h, std::string& why) {
   if (!rope_.tensionOnly() && !ground_) return generalizedAlphaStep(s, h, why);
@@ -402,8 +419,13 @@ bool FullOrderSolver::tryStep(CoupledState& s, double h, std::string& why) {
   };
   rope.switch_work_error = [this](const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) {
     const int e = rope_.positionIndex(rope_.nodes() - 1);
-    return rope_.slackSwitchWorkError(q0, q1) +
-           (ground_ ? ground_->switchWorkError(q0.segment<3>(e), q1.segment<3>(e)) : 0.0);
+    const double ground =
+        ground_ ? ground_->switchWorkError(q0.segment<3>(e), q1.segment<3>(e)) : 0.0;
+    if (!rope_.tensionOnly()) return ground;
+    // (the start's strains are the step before's end's: axialStrainsAt keeps both)
+    const Eigen::VectorXd& eps0 = axialStrainsAt(q0);
+    const Eigen::VectorXd& eps1 = axialStrainsAt(q1);
+    return rope_.slackSwitchWorkError(q0, q1, eps0, eps1) + ground;
   };
   rope.energy_created = [this](const CoupledState& a, const CoupledState& b) {
     return ropeEnergyCreated(a, b);

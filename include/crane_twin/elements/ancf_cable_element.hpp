@@ -69,6 +69,12 @@ inline bool ancfAxialSlack(double g, bool tension_only) {
 /// solvers halve such steps (step-size control). 0 without tension_only.
 double ancfSlackSwitchWorkError(const AncfCableProperties& p, const Vector12& e0,
                                 const Vector12& e1);
+/// The same from the axial strains eps = |r_x| - 1 at the element's Gauss points at both ends
+/// (ancfAxialStrains), p.gauss_points values each.
+double ancfSlackSwitchWorkError(const AncfCableProperties& p, const double* eps0,
+                                const double* eps1);
+/// The axial strains eps = |r_x(xi_g)| - 1 at the element's p.gauss_points Gauss points.
+void ancfAxialStrains(const AncfCableProperties& p, const Vector12& e, double* eps);
 
 /// Position r(xi) = S(xi) e.
 Eigen::Vector3d ancfPosition(const Vector12& e, double xi, double l);

@@ -120,6 +120,13 @@ class AncfRope {
   /// rigging bar's |(T0 + T1) / 2 (l1 - l0) - (U1 - U0)| where it is not taut at both ends [J]
   /// (0 unless tension_only; exactly 0 where the rope is taut at both ends).
   double slackSwitchWorkError(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) const;
+  /// The same from the hoist rope's axial strains at both ends (axialStrains of q0 and q1, which
+  /// a caller may keep from an earlier call) and, with a rigging, q0 and q1 for its bar.
+  double slackSwitchWorkError(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1,
+                              const Eigen::VectorXd& eps0, const Eigen::VectorXd& eps1) const;
+  /// The hoist rope's axial strains eps = |r_x| - 1 at every Gauss point, element by element
+  /// (elements() x gauss_points values; ancfAxialStrains).
+  void axialStrains(const Eigen::VectorXd& q, Eigen::VectorXd& eps) const;
   bool tensionOnly() const { return element_.tension_only; }
   /// Which rope this is: a value that changes with every call that changes M, F_g or U(q) (the
   /// setters above), drawn from a process-wide counter, so two ropes that differ never share it
@@ -162,6 +169,8 @@ class AncfRope {
   std::vector<int> mass_exponent_;              ///< s_i + s_j per entry (0: l, 1: l^2, 2: l^3)
   std::uint64_t revision_ = nextRevision();
   static std::uint64_t nextRevision();
+  // The rigging bar's share of slackSwitchWorkError (0 without a rigging).
+  double riggingSwitchWorkError(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) const;
   void assembleMass();
   void updateGravityForce();
 };

@@ -26,6 +26,7 @@
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -173,6 +174,15 @@ class FullOrderSolver {
     double value = 0.0;
   };
   mutable RopeEnergyMemo rope_energy_memo_;
+  // The hoist rope's axial strains at q (AncfRope::axialStrains), remembered for the last two
+  // states asked: a step's switch check asks its start (the step before's end) and its end.
+  const Eigen::VectorXd& axialStrainsAt(const Eigen::VectorXd& q) const;
+  struct StrainMemo {
+    std::uint64_t revision = 0;  ///< AncfRope::revision() of the strains (0: none)
+    Eigen::VectorXd q, eps;
+  };
+  mutable std::array<StrainMemo, 2> strain_memo_;
+  mutable int strain_memo_last_ = 0;  ///< the entry asked last (the other is replaced first)
   long halved_steps_ = 0;
   long matrix_reusing_corrections_ = 0;
   /// An energy-consistent step's start at every Gauss point, element by element (the part of
