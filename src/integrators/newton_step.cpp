@@ -72,6 +72,7 @@ bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSe
   Eigen::VectorXd rz;
   double previous = 0.0;        // the previous correction's max |dq|, |D dz| (0: none yet)
   double step_constant = -1.0;  // largest d_k / d_(k-1)^2 so far (negative: none yet)
+  double step_rate = -1.0;      // largest d_k / d_(k-1) so far (negative: none yet)
   for (int it = 0; it < newton.max_iterations; ++it) {
     if (m > 0) {
       // The support's equation at the step's end, or at an energy-consistent step's means.
@@ -98,11 +99,31 @@ bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSe
       return false;
     }
     // The step's quadratic constant d_k / d_(k-1)^2 (header), largest of its corrections.
-    if (previous > 0.0) step_constant = std::max(step_constant, dmax / (previous * previous));
-    if (dmax < newton.position_tolerance &&
-        constraintError(support, s) < newton.constraint_tolerance) {
+    if (previous > 0.0) {
+      step_constant = std::max(step_constant, dmax / (previous * previous));
+      step_rate = std::max(step_rate, dmax / previous);
+    }
+    const auto constraint_met = [&] {
+      return constraintError(support, s) < newton.constraint_tolerance;
+    };
+    if (dmax < newton.position_tolerance && constraint_met()) {
       if (memory && step_constant >= 0.0) memory->quadratic_constant = step_constant;
+      if (memory && step_rate >= 0.0) {
+        memory->contraction_rate = step_rate;
+        memory->foreseen_steps = 0;
+      }
       completeStep(ga, start, h, it + 1, s);
+      return true;
+    }
+    // DASSL's test on the first correction (NewtonSettings::accept_foreseen_first_correction):
+    // what the remaining corrections add up to, at most rho / (1 - rho) d_0.
+    if (it == 0 && newton.accept_foreseen_first_correction && memory &&
+        memory->first_correction_kept_branches && memory->foreseen_steps < kMaxForeseenSteps && memory->contraction_rate < 1.0 &&
+        memory->contraction_rate / (1.0 - memory->contraction_rate) * dmax <
+            newton.position_tolerance &&
+        constraint_met()) {
+      ++memory->foreseen_steps;
+      completeStep(ga, start, h, 1, s);
       return true;
     }
     // Quadratic contraction with the next correction foreseen below the tolerance (header):

@@ -423,6 +423,7 @@ bool InvariantReducedSolver::factorize(double a, double c, double k, const Eigen
   J.block<3, 3>(n, n) = -G;
   lu_.compute(J);
   ++factorizations_;
+  newton_memory_.forget();  // its rate was the old matrix's
   factored_ = std::isfinite(lu_.rcond()) && lu_.rcond() > 1e-300;
   fact_a_ = a, fact_c_ = c, fact_k_ = k, fact_L_ = L_, fact_G_ = G, fact_d_ = d;
   fact_contact_K_ = contact_K_;
@@ -511,6 +512,7 @@ bool InvariantReducedSolver::newton(
   const int n = n_;
   int iterations = 0;
   double residual_min_stretch = -1.0, last_correction = 0.0;
+  const Eigen::VectorXd start_q = s.q;
   const RopeIncrement increment = [&](const CoupledState& x, const NewtonWeights& w,
                                       const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
                                       Eigen::Vector3d& dmu, std::string& reason) {
@@ -548,10 +550,34 @@ bool InvariantReducedSolver::newton(
     dmu = dx.tail<3>();
     residual_min_stretch = last_force_min_stretch_;
     last_correction = dq.cwiseAbs().maxCoeff();
+    if (iterations == 1) {
+      // The law's branches from the start to the corrected iterate (NewtonMemory): every point
+      // in the axial law's linear range at both (the start's bound, and the residual's less what
+      // the correction can change), a rigging's bar taut and the load clear of the ground at
+      // the start, the iterate and the corrected one.
+      const double moved = std::sqrt(3.0) * slope_sum_ * last_correction / L_;
+      bool kept =
+          !rope_.element().tension_only || (minStretchLowerBound(start_q) - 1.0 >= kSlackBand &&
+                                            residual_min_stretch - moved - 1.0 >= kSlackBand);
+      if (ground_) {
+        kept = kept && ground_->penetration(endPoint(start_q)) <= 0.0 &&
+               ground_->penetration(endPoint(x.q)) <= 0.0 &&
+               ground_->penetration(endPoint(x.q + dq)) <= 0.0;
+      }
+      if (rigged_) {
+        const auto taut = [&](const Eigen::VectorXd& y) {
+          return rope_.rigging().tension(barCoordinates(y)) > 0.0;
+        };
+        kept = kept && taut(start_q) && taut(x.q) && taut(x.q + dq);
+      }
+      newton_memory_.first_correction_kept_branches = kept;
+    }
     return true;
   };
   last_force_min_stretch_ = -1.0;  // set by force(): a residual without it records no bound
-  const bool ok = newtonStep(scheme, support_, newton_, h, increment, s, why, support_means_z0);
+  // (the energy-consistent steps, secant_from set, neither use nor set the rate)
+  const bool ok = newtonStep(scheme, support_, newton_, h, increment, s, why, support_means_z0,
+                             secant_from ? nullptr : &newton_memory_);
   // A lower bound of the end state's smallest stretch: the last residual's, less what the last
   // correction can change it by (|dr_x| <= sum_k |psi_k'| |da_k| / L <= sqrt(3) S |dq|_inf / L).
   if (ok && residual_min_stretch > 0.0) {
@@ -592,6 +618,7 @@ bool InvariantReducedSolver::energyConsistentStep(CoupledState& s, double h, std
   ec_start_ = &start;
   const bool ok = newton(energyConsistentScheme(h), h, residual, s, why, &start.z, &start.q);
   ec_start_ = nullptr;
+  newton_memory_.forget();  // the generalized-alpha steps after a switch measure their rate anew
   if (!ok) {
     s = start;
     return false;

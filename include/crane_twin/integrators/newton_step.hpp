@@ -52,13 +52,40 @@ struct NewtonSettings {
   /// Let the last correction reuse the iteration matrix (see above); false: every correction
   /// assembles and factorises it.
   bool reuse_matrix_near_convergence = true;
+  /// With a NewtonMemory: accept a step after its first correction d_0 where the contraction
+  /// rate rho of the corrections (d_k <= rho d_(k-1), the largest of the last step with two
+  /// corrections or more) bounds what is left, rho / (1 - rho) d_0, below position_tolerance,
+  /// the convergence test of DASSL (Brenan, Campbell and Petzold, "Numerical Solution of
+  /// Initial-Value Problems in Differential-Algebraic Equations", 1996, sec. 5.2.2) for an
+  /// iteration whose matrix is not the Jacobian: the step then costs one residual and one solve.
+  /// At most kMaxForeseenSteps steps in a row, the next one measures rho again; and only where
+  /// the solver reports its law's branches kept (NewtonMemory::first_correction_kept_branches).
+  bool accept_foreseen_first_correction = false;
 };
+
+/// Steps in a row a NewtonMemory's contraction rate may accept after their first correction
+/// (NewtonSettings::accept_foreseen_first_correction).
+constexpr int kMaxForeseenSteps = 4;
 
 /// What a solver's Newton iteration carries from one step to the next (see above).
 struct NewtonMemory {
   /// The largest d_k / d_(k-1)^2 of the last step with two corrections or more [1/m]; infinite
   /// before one (no first correction keeps the matrix then).
   double quadratic_constant = std::numeric_limits<double>::infinity();
+  /// The largest d_k / d_(k-1) of the last step with two corrections or more; infinite before
+  /// one, or after a solver's change of its iteration matrix (forget()).
+  double contraction_rate = std::numeric_limits<double>::infinity();
+  /// Steps accepted after their first correction since the rate was measured.
+  int foreseen_steps = 0;
+  /// Set by a solver's increment at each step's first correction: whether its law keeps its
+  /// branches from the step's start to the corrected iterate (a piecewise law, a slack point or
+  /// a contact, changes the rate within the step; the rate may then not end it).
+  bool first_correction_kept_branches = true;
+  /// A new iteration matrix or model: no rate is known.
+  void forget() {
+    quadratic_constant = contraction_rate = std::numeric_limits<double>::infinity();
+    foreseen_steps = 0;
+  }
 };
 
 /// The weights of the beta h^2-scaled iteration matrix of a step of size h.

@@ -74,9 +74,14 @@ class InvariantReducedSolver {
   /// 1e-10 m is two orders under this basis's truncation error, 1e-7 to 1e-5 m against full
   /// order; the looser bound saves one force evaluation per step and moves the payload by under
   /// 1e-8 m on the operator cycle and the 30 deg swing, docs/accuracy-vs-time.md "Operation").
+  /// Its generalized-alpha steps may end after one correction where the last measured rate of
+  /// their corrections bounds the rest below that tolerance (NewtonSettings::
+  /// accept_foreseen_first_correction; the rate is measured again at least every
+  /// kMaxForeseenSteps + 1 steps and forgotten with every new iteration matrix).
   static NewtonSettings defaultNewton() {
     NewtonSettings s;
     s.position_tolerance = 1e-8;
+    s.accept_foreseen_first_correction = true;
     return s;
   }
 
@@ -242,6 +247,9 @@ class InvariantReducedSolver {
   Eigen::Vector3d fact_d_ = Eigen::Vector3d::Zero();
   int last_iterations_ = 0;
   int factorizations_ = 0;
+  // The generalized-alpha steps' contraction rate (newton_step.hpp), forgotten with every
+  // factorisation and after every energy-consistent step.
+  NewtonMemory newton_memory_;
   long newton_iterations_ = 0, steps_ = 0;
   // Tension-only stepping (as FullOrderSolver's).
   TensionOnlySwitching switching_;
