@@ -118,7 +118,8 @@ bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSe
     // DASSL's test on the first correction (NewtonSettings::accept_foreseen_first_correction):
     // what the remaining corrections add up to, at most rho / (1 - rho) d_0.
     if (it == 0 && newton.accept_foreseen_first_correction && memory &&
-        memory->first_correction_kept_branches && memory->foreseen_steps < kMaxForeseenSteps && memory->contraction_rate < 1.0 &&
+        memory->first_correction_kept_branches && memory->foreseen_steps < kMaxForeseenSteps &&
+        memory->contraction_rate < 1.0 &&
         memory->contraction_rate / (1.0 - memory->contraction_rate) * dmax <
             newton.position_tolerance &&
         constraint_met()) {
