@@ -512,7 +512,21 @@ bool InvariantReducedSolver::newton(
   const int n = n_;
   int iterations = 0;
   double residual_min_stretch = -1.0, last_correction = 0.0;
-  const Eigen::VectorXd start_q = s.q;
+  // The law's branches kept from the step's start to its first corrected iterate (NewtonMemory,
+  // asked only of generalized-alpha steps that may end there): every point in the axial law's
+  // linear range (the start's bound, and the residual's less what the correction can change), a
+  // rigging's bar taut and the load clear of the ground, at the start, the iterate and the
+  // corrected one. The start's part here, the iterates' in the first correction.
+  const auto taut_bar = [&](const Eigen::VectorXd& y) {
+    return !rigged_ || rope_.rigging().tension(barCoordinates(y)) > 0.0;
+  };
+  const auto clear = [&](const Eigen::VectorXd& y) {
+    return !ground_ || ground_->penetration(endPoint(y)) <= 0.0;
+  };
+  const bool foresee = !secant_from && newton_.accept_foreseen_first_correction;
+  const bool start_kept =
+      foresee && clear(s.q) && taut_bar(s.q) &&
+      (!rope_.element().tension_only || minStretchLowerBound(s.q) - 1.0 >= kSlackBand);
   const RopeIncrement increment = [&](const CoupledState& x, const NewtonWeights& w,
                                       const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
                                       Eigen::Vector3d& dmu, std::string& reason) {
@@ -550,25 +564,14 @@ bool InvariantReducedSolver::newton(
     dmu = dx.tail<3>();
     residual_min_stretch = last_force_min_stretch_;
     last_correction = dq.cwiseAbs().maxCoeff();
-    if (iterations == 1) {
-      // The law's branches from the start to the corrected iterate (NewtonMemory): every point
-      // in the axial law's linear range at both (the start's bound, and the residual's less what
-      // the correction can change), a rigging's bar taut and the load clear of the ground at
-      // the start, the iterate and the corrected one.
-      const double moved = std::sqrt(3.0) * slope_sum_ * last_correction / L_;
-      bool kept =
-          !rope_.element().tension_only || (minStretchLowerBound(start_q) - 1.0 >= kSlackBand &&
-                                            residual_min_stretch - moved - 1.0 >= kSlackBand);
-      if (ground_) {
-        kept = kept && ground_->penetration(endPoint(start_q)) <= 0.0 &&
-               ground_->penetration(endPoint(x.q)) <= 0.0 &&
-               ground_->penetration(endPoint(x.q + dq)) <= 0.0;
-      }
-      if (rigged_) {
-        const auto taut = [&](const Eigen::VectorXd& y) {
-          return rope_.rigging().tension(barCoordinates(y)) > 0.0;
-        };
-        kept = kept && taut(start_q) && taut(x.q) && taut(x.q + dq);
+    if (foresee && iterations == 1) {
+      bool kept = start_kept;
+      if (kept) {
+        const double moved = std::sqrt(3.0) * slope_sum_ * last_correction / L_;
+        const Eigen::VectorXd corrected = x.q + dq;
+        kept =
+            (!rope_.element().tension_only || residual_min_stretch - moved - 1.0 >= kSlackBand) &&
+            clear(x.q) && clear(corrected) && taut_bar(x.q) && taut_bar(corrected);
       }
       newton_memory_.first_correction_kept_branches = kept;
     }
