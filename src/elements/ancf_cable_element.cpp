@@ -434,6 +434,14 @@ void ancfAxialStrains(const AncfCableProperties& p, const Vector12& e, double* e
     eps[q] = combine(ancfShapeDx(gr.x(q), p.length), e).norm() - 1.0;
 }
 
+double ancfAxialTangentShape(const AncfCableProperties& p, const Vector12& e, int g, Vector12& v) {
+  const GaussRule& gr = gaussRule(p.gauss_points);
+  const Eigen::Vector4d sx = ancfShapeDx(gr.x(g), p.length);
+  const Eigen::Vector3d t = combine(sx, e).normalized();
+  for (int i = 0; i < 4; ++i) v.segment<3>(3 * i) = sx(i) * t;
+  return gr.w(g) * p.length;
+}
+
 void ancfAxialDampingForce(const AncfCableProperties& p, double c, const Vector12& e,
                            const Vector12& edot, Vector12& Q, Matrix12* C) {
   const GaussRule& gr = gaussRule(p.gauss_points);

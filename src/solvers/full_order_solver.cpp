@@ -197,6 +197,7 @@ void FullOrderSolver::factorize(const std::string& what) {
 }
 
 bool FullOrderSolver::factorizeIterationMatrix() {
+  ++factorizations_;
   band_factorized_ = band_->factorize(A_);
   if (band_factorized_) return true;
   ldlt_.factorize(A_);
@@ -444,17 +445,130 @@ bool FullOrderSolver::generalizedAlphaStep(CoupledState& s, double h, std::strin
                                       const Eigen::Vector3d& rc, Eigen::VectorXd& dq,
                                       Eigen::Vector3d& dmu, std::string& reason) {
     // d/dq of the damping force through v' = gamma / (beta h) dq, times beta h^2.
-    const bool keep =
-        w.keep_matrix && (!w.keep_foreseen_from_last_step || lawBranchesAsAtMatrix(x.q));
+    bool keep = w.keep_matrix && (!w.keep_foreseen_from_last_step || lawBranchesAsAtMatrix(x.q));
+    rank_one_terms_.clear();
+    // The tangent changes of the few points that switched since the matrix's iterate, as
+    // rank-one terms (rankOneTermsApply): where the last step's matrix was offered and a point
+    // switched; where a kept matrix follows a correction that needed them; and within the step
+    // where this step's matrix would otherwise be assembled afresh.
+    const bool offered_across_switch = w.keep_matrix && w.keep_foreseen_from_last_step && !keep;
+    const bool offered_after_terms = w.keep_matrix && !w.keep_foreseen_from_last_step &&
+                                     column_factorization_ == matrix_factorization_ &&
+                                     !column_point_.empty();
+    const bool this_steps_matrix =
+        !w.keep_matrix && matrix_ga_step_ == ga_steps_ && step_starts_slack_;
+    if ((offered_across_switch || offered_after_terms || this_steps_matrix) &&
+        rankOneTermsApply(x.q, h)) {
+      const bool few = axialTangentChanges(x.q, w.stiffness, rank_one_terms_, rank_one_points_);
+      keep = few && (offered_after_terms || !rank_one_terms_.empty());
+      if (!keep) rank_one_terms_.clear();
+    }
     assemble(x.q, x.v, w.mass, w.stiffness, w.damping, w.G, Q, nullptr, !keep);
-    if (!keep) matrix_q_ = x.q;
+    if (!keep) {
+      matrix_q_ = x.q;
+      if (iterate_eps_.size() > 0 && iterate_q_ == x.q)
+        std::swap(matrix_eps_, iterate_eps_);
+      else
+        matrix_eps_.resize(0);
+      matrix_h_ = h;
+      matrix_revision_ = rope_.revision();
+      matrix_ga_step_ = ga_steps_;
+    }
     Eigen::VectorXd rhs(n + 3);
     rhs.head(n) = -w.stiffness * (M * x.qdd + Q - rope_.gravityForce());
     rhs.head<3>() -= w.stiffness * x.lambda;
     rhs.tail<3>() = rc;
-    return solveIncrement(rhs, dq, dmu, reason, !keep);
+    if (!rank_one_terms_.empty()) {
+      Eigen::VectorXd dx;
+      const auto solve = [this](const Eigen::VectorXd& b) { return solveFactorized(b); };
+      std::vector<const Eigen::VectorXd*> columns;
+      for (std::size_t j = 0; j < rank_one_terms_.size(); ++j)
+        columns.push_back(&rankOneColumn(rank_one_terms_[j], rank_one_points_[j]));
+      if (solveWithRankOneTerms(solve, rank_one_terms_, columns, rhs, dx)) {
+        ++matrix_reusing_corrections_;
+        ++rank_one_corrections_;
+        dq = dx.head(n);
+        dmu = dx.tail<3>();
+        return true;
+      }
+      // The terms' system singular: this iterate's own matrix.
+      assemble(x.q, x.v, w.mass, w.stiffness, w.damping, w.G, Q, nullptr, true);
+      matrix_q_ = x.q;
+      matrix_eps_.resize(0);
+      matrix_h_ = h;
+      matrix_revision_ = rope_.revision();
+      matrix_ga_step_ = ga_steps_;
+      keep = false;
+    }
+    const bool ok = solveIncrement(rhs, dq, dmu, reason, !keep);
+    if (!keep) matrix_factorization_ = factorizations_;
+    return ok;
   };
+  ++ga_steps_;
+  // Within a step, only a rope slack somewhere at its start looks for switched points (a taut
+  // rope's corrections that miss quadratic contraction do so for its geometry, not its law).
+  step_starts_slack_ =
+      rope_.tensionOnly() && !rope_.hasRigging() && axialStrainsAt(s.q).minCoeff() < kSlackBand;
   return newtonStep(ga_, support_, newton_, h, increment, s, why, nullptr, &newton_memory_);
+}
+
+bool FullOrderSolver::rankOneTermsApply(const Eigen::VectorXd& q, double h) const {
+  if (!newton_.rank_one_switch_updates) return false;
+  if (!rope_.tensionOnly() || rope_.hasRigging() || rope_damping_ != 0.0) return false;
+  if (matrix_q_.size() != q.size() || matrix_h_ != h || matrix_revision_ != rope_.revision() ||
+      !band_factorized_ || matrix_factorization_ != factorizations_)
+    return false;
+  if (!ground_) return true;
+  const int e = rope_.positionIndex(rope_.nodes() - 1);
+  return ground_->penetration(matrix_q_.segment<3>(e)) <= 0.0 &&
+         ground_->penetration(q.segment<3>(e)) <= 0.0;
+}
+
+// A_ at q differs from A_ at matrix_q_ by stiffWeight times the change of the element tangents;
+// at a Gauss point whose law changed its slope N' that change is w_g l (N'_1 - N'_0) v v^T
+// (ancfAxialTangentShape) plus what q's change turns in the other terms (the small change a
+// kept matrix ignores anyway).
+bool FullOrderSolver::axialTangentChanges(const Eigen::VectorXd& q, double stiffWeight,
+                                          std::vector<RankOneTerm>& terms,
+                                          std::vector<int>& points) const {
+  terms.clear();
+  points.clear();
+  if (matrix_eps_.size() == 0) rope_.axialStrains(matrix_q_, matrix_eps_);
+  rope_.axialStrains(q, iterate_eps_);
+  iterate_q_ = q;
+  const AncfCableProperties& p = rope_.element();
+  const int g = p.gauss_points;
+  const double EA = p.axial_stiffness;
+  for (int i = 0; i < iterate_eps_.size(); ++i) {
+    double N0, dN0, N1, dN1;
+    ancfAxialLaw(EA, matrix_eps_(i), true, N0, dN0);
+    ancfAxialLaw(EA, iterate_eps_(i), true, N1, dN1);
+    if (dN1 == dN0) continue;
+    if (static_cast<int>(terms.size()) == kMaxRankOneTerms) return false;
+    RankOneTerm t;
+    const int k = i / g;
+    t.offset = 6 * k;
+    t.c = stiffWeight * ancfAxialTangentShape(p, matrix_q_.segment<12>(6 * k), i % g, t.u) *
+          (dN1 - dN0);
+    terms.push_back(t);
+    points.push_back(i);
+  }
+  return true;
+}
+
+const Eigen::VectorXd& FullOrderSolver::rankOneColumn(const RankOneTerm& term, int point) {
+  if (column_factorization_ != matrix_factorization_) {
+    column_factorization_ = matrix_factorization_;
+    column_point_.clear();
+    column_.clear();
+  }
+  for (std::size_t j = 0; j < column_point_.size(); ++j)
+    if (column_point_[j] == point) return column_[j];
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(A_.rows());
+  u.segment<12>(term.offset) = term.u;
+  column_point_.push_back(point);
+  column_.push_back(solveFactorized(u));
+  return column_.back();
 }
 
 // Taut at every Gauss point (and the rigging bar) at both iterates: the trapezoid work error of

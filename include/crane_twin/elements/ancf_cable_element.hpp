@@ -75,6 +75,10 @@ double ancfSlackSwitchWorkError(const AncfCableProperties& p, const double* eps0
                                 const double* eps1);
 /// The axial strains eps = |r_x(xi_g)| - 1 at the element's p.gauss_points Gauss points.
 void ancfAxialStrains(const AncfCableProperties& p, const Vector12& e, double* eps);
+/// The axial law's material share of Gauss point g's tangent as a rank-one term: the element's
+/// tangent holds w_g l N'(eps_g) v v^T with v = S_x(xi_g)^T t, t = r_x / |r_x| (ancfCablePoint's
+/// Paa = N' t t^T + (N / |r_x|) (I - t t^T)). Writes v and returns w_g l [m].
+double ancfAxialTangentShape(const AncfCableProperties& p, const Vector12& e, int g, Vector12& v);
 
 /// Position r(xi) = S(xi) e.
 Eigen::Vector3d ancfPosition(const Vector12& e, double xi, double l);

@@ -61,6 +61,11 @@ struct NewtonSettings {
   /// At most kMaxForeseenSteps steps in a row, the next one measures rho again; and only where
   /// the solver reports its law's branches kept (NewtonMemory::first_correction_kept_branches).
   bool accept_foreseen_first_correction = false;
+  /// Full order, tension-only law: a correction whose matrix differs from the factorised one
+  /// only by the axial tangent of a few Gauss points that changed branch keeps the
+  /// factorisation and adds those points as rank-one terms (FullOrderSolver; docs/model.md
+  /// "Full-order solution"); false: such a correction assembles and factorises its matrix.
+  bool rank_one_switch_updates = true;
 };
 
 /// Steps in a row a NewtonMemory's contraction rate may accept after their first correction

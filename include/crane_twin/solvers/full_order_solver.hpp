@@ -28,6 +28,7 @@
 #include <Eigen/SparseCholesky>
 #include <array>
 #include <cstdint>
+#include <deque>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,6 +42,7 @@
 #include "crane_twin/rope/ancf_rope.hpp"
 #include "crane_twin/rope/rope_support.hpp"
 #include "crane_twin/solvers/bordered_band_factorization.hpp"
+#include "crane_twin/solvers/rank_one_terms_solve.hpp"
 
 namespace crane_twin {
 
@@ -105,6 +107,11 @@ class FullOrderSolver {
   /// Newton corrections so far that reused the factorised iteration matrix
   /// (NewtonSettings::reuse_matrix_near_convergence).
   long matrixReusingCorrections() const { return matrix_reusing_corrections_; }
+  /// Corrections that kept the factorisation with rank-one terms for Gauss points whose axial
+  /// law changed branch since (see rankOneTermsApply).
+  long rankOneCorrections() const { return rank_one_corrections_; }
+  /// Factorisations of the iteration matrix so far.
+  long factorizations() const { return factorizations_; }
 
   /// Continue another solver's run of the same scene and step: the memory of its stepping (an
   /// energy-consistent episode under way, the energy balance, the rope length of its last
@@ -205,6 +212,39 @@ class FullOrderSolver {
   // The iterate at which a generalized-alpha step last assembled A_ (the matrix a first
   // correction keeps; the energy-consistent step's and the start's solves do not set it).
   Eigen::VectorXd matrix_q_;
+  // A generalized-alpha correction whose matrix would be A_ at matrix_q_ but for the axial
+  // tangent of a few Gauss points that changed branch since (a slack rope's Newton iterates):
+  // the factorisation kept and those points' tangent changes added as rank-one terms
+  // (rank_one_terms_solve.hpp; docs/model.md "Full-order solution"). axialTangentChanges
+  // collects them: stiffWeight w_g l (N'(eps_g(q)) - N'(eps_g(matrix_q_))) v v^T with
+  // v = S_x^T t at matrix_q_ (ancfAxialTangentShape); false where more than kMaxRankOneTerms points
+  // changed. Only where nothing else in A_ switches (no rigging, no rope damping, the payload
+  // clear of the ground) and A_'s factorisation is that generalized-alpha matrix, of this step
+  // size and rope length.
+  bool rankOneTermsApply(const Eigen::VectorXd& q, double h) const;
+  bool axialTangentChanges(const Eigen::VectorXd& q, double stiffWeight,
+                           std::vector<RankOneTerm>& terms, std::vector<int>& points) const;
+  // A^-1 u of the term at Gauss point `point`, from the columns kept for this factorisation.
+  const Eigen::VectorXd& rankOneColumn(const RankOneTerm& term, int point);
+  static constexpr int kMaxRankOneTerms = 12;
+  long factorizations_ = 0;              ///< factorizeIterationMatrix calls
+  long matrix_factorization_ = -1;       ///< factorizations_ of A_ at matrix_q_
+  double matrix_h_ = 0.0;                ///< the step size of A_ at matrix_q_ [s]
+  std::uint64_t matrix_revision_ = 0;    ///< the rope's revision() then (a new length: a new A_)
+  long ga_steps_ = 0;                    ///< generalized-alpha steps begun
+  bool step_starts_slack_ = false;       ///< a Gauss point below the linear range at its start
+  long matrix_ga_step_ = -1;             ///< ga_steps_ when A_ was assembled at matrix_q_
+  mutable Eigen::VectorXd matrix_eps_;   ///< axial strains at matrix_q_ (empty: not yet computed)
+  mutable Eigen::VectorXd iterate_eps_;  ///< axial strains at iterate_q_ (the last checked)
+  mutable Eigen::VectorXd iterate_q_;
+  std::vector<RankOneTerm> rank_one_terms_;
+  std::vector<int> rank_one_points_;  ///< the Gauss point (element-major index) of each term
+  // A^-1 u of the terms' shapes for the factorisation matrix_factorization_, by Gauss point
+  // (u = v at matrix_q_ does not change while the factorisation stands).
+  long column_factorization_ = -1;
+  std::vector<int> column_point_;
+  std::deque<Eigen::VectorXd> column_;  // (push_back keeps references to the others)
+  long rank_one_corrections_ = 0;
   SparseMatrix A_;               ///< KKT iteration matrix, pattern fixed at construction
   std::vector<int> mass_index_;  ///< value slot of each mass entry (in M's order)
   std::vector<double> mass_value_;
