@@ -457,23 +457,16 @@ bool FullOrderSolver::generalizedAlphaStep(CoupledState& s, double h, std::strin
                                      !column_point_.empty();
     const bool this_steps_matrix =
         !w.keep_matrix && matrix_ga_step_ == ga_steps_ && step_starts_slack_;
+    bool strains_at_iterate = false;  // iterate_eps_ holds x.q's strains
     if ((offered_across_switch || offered_after_terms || this_steps_matrix) &&
         rankOneTermsApply(x.q, h)) {
       const bool few = axialTangentChanges(x.q, w.stiffness, rank_one_terms_, rank_one_points_);
+      strains_at_iterate = true;
       keep = few && (offered_after_terms || !rank_one_terms_.empty());
       if (!keep) rank_one_terms_.clear();
     }
     assemble(x.q, x.v, w.mass, w.stiffness, w.damping, w.G, Q, nullptr, !keep);
-    if (!keep) {
-      matrix_q_ = x.q;
-      if (iterate_eps_.size() > 0 && iterate_q_ == x.q)
-        std::swap(matrix_eps_, iterate_eps_);
-      else
-        matrix_eps_.resize(0);
-      matrix_h_ = h;
-      matrix_revision_ = rope_.revision();
-      matrix_ga_step_ = ga_steps_;
-    }
+    if (!keep) assembledMatrixAt(x.q, h, strains_at_iterate);
     Eigen::VectorXd rhs(n + 3);
     rhs.head(n) = -w.stiffness * (M * x.qdd + Q - rope_.gravityForce());
     rhs.head<3>() -= w.stiffness * x.lambda;
@@ -493,11 +486,7 @@ bool FullOrderSolver::generalizedAlphaStep(CoupledState& s, double h, std::strin
       }
       // The terms' system singular: this iterate's own matrix.
       assemble(x.q, x.v, w.mass, w.stiffness, w.damping, w.G, Q, nullptr, true);
-      matrix_q_ = x.q;
-      matrix_eps_.resize(0);
-      matrix_h_ = h;
-      matrix_revision_ = rope_.revision();
-      matrix_ga_step_ = ga_steps_;
+      assembledMatrixAt(x.q, h, strains_at_iterate);
       keep = false;
     }
     const bool ok = solveIncrement(rhs, dq, dmu, reason, !keep);
@@ -507,17 +496,34 @@ bool FullOrderSolver::generalizedAlphaStep(CoupledState& s, double h, std::strin
   ++ga_steps_;
   // Within a step, only a rope slack somewhere at its start looks for switched points (a taut
   // rope's corrections that miss quadratic contraction do so for its geometry, not its law).
-  step_starts_slack_ =
-      rope_.tensionOnly() && !rope_.hasRigging() && axialStrainsAt(s.q).minCoeff() < kSlackBand;
+  step_starts_slack_ = rankOneTermsPossible() && axialStrainsAt(s.q).minCoeff() < kSlackBand;
   return newtonStep(ga_, support_, newton_, h, increment, s, why, nullptr, &newton_memory_);
 }
 
+void FullOrderSolver::assembledMatrixAt(const Eigen::VectorXd& q, double h,
+                                        bool strains_at_iterate) {
+  matrix_q_ = q;
+  if (strains_at_iterate)
+    std::swap(matrix_eps_, iterate_eps_);
+  else
+    matrix_eps_.resize(0);
+  matrix_h_ = h;
+  matrix_revision_ = rope_.revision();
+  matrix_ga_step_ = ga_steps_;
+}
+
+bool FullOrderSolver::rankOneTermsPossible() const {
+  return newton_.rank_one_switch_updates && rope_.tensionOnly() && !rope_.hasRigging() &&
+         rope_damping_ == 0.0;
+}
+
 bool FullOrderSolver::rankOneTermsApply(const Eigen::VectorXd& q, double h) const {
-  if (!newton_.rank_one_switch_updates) return false;
-  if (!rope_.tensionOnly() || rope_.hasRigging() || rope_damping_ != 0.0) return false;
-  if (matrix_q_.size() != q.size() || matrix_h_ != h || matrix_revision_ != rope_.revision() ||
-      !band_factorized_ || matrix_factorization_ != factorizations_)
-    return false;
+  return rankOneTermsPossible() && matrix_q_.size() == q.size() && matrix_h_ == h &&
+         matrix_revision_ == rope_.revision() && band_factorized_ &&
+         matrix_factorization_ == factorizations_ && payloadClearAtMatrixAnd(q);
+}
+
+bool FullOrderSolver::payloadClearAtMatrixAnd(const Eigen::VectorXd& q) const {
   if (!ground_) return true;
   const int e = rope_.positionIndex(rope_.nodes() - 1);
   return ground_->penetration(matrix_q_.segment<3>(e)) <= 0.0 &&
@@ -535,7 +541,6 @@ bool FullOrderSolver::axialTangentChanges(const Eigen::VectorXd& q, double stiff
   points.clear();
   if (matrix_eps_.size() == 0) rope_.axialStrains(matrix_q_, matrix_eps_);
   rope_.axialStrains(q, iterate_eps_);
-  iterate_q_ = q;
   const AncfCableProperties& p = rope_.element();
   const int g = p.gauss_points;
   const double EA = p.axial_stiffness;
@@ -576,10 +581,7 @@ const Eigen::VectorXd& FullOrderSolver::rankOneColumn(const RankOneTerm& term, i
 // the payload clear of the ground at both.
 bool FullOrderSolver::lawBranchesAsAtMatrix(const Eigen::VectorXd& q) const {
   if (matrix_q_.size() != q.size() || rope_.slackSwitchWorkError(matrix_q_, q) != 0.0) return false;
-  if (!ground_) return true;
-  const int e = rope_.positionIndex(rope_.nodes() - 1);
-  return ground_->penetration(matrix_q_.segment<3>(e)) <= 0.0 &&
-         ground_->penetration(q.segment<3>(e)) <= 0.0;
+  return payloadClearAtMatrixAnd(q);
 }
 
 // The energy-consistent step (docs/model.md "Energy-consistent step", energyConsistentScheme):

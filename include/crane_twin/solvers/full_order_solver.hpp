@@ -222,6 +222,14 @@ class FullOrderSolver {
   // clear of the ground) and A_'s factorisation is that generalized-alpha matrix, of this step
   // size and rope length.
   bool rankOneTermsApply(const Eigen::VectorXd& q, double h) const;
+  // What rankOneTermsApply asks of the rope and the settings alone.
+  bool rankOneTermsPossible() const;
+  // The payload clear of the ground at matrix_q_ and at q (always, without a ground).
+  bool payloadClearAtMatrixAnd(const Eigen::VectorXd& q) const;
+  // A generalized-alpha matrix assembled at q for step size h: matrix_q_ and what goes with it;
+  // the strains at q taken from iterate_eps_ where strains_at_iterate (axialTangentChanges ran
+  // at q), else computed when next asked.
+  void assembledMatrixAt(const Eigen::VectorXd& q, double h, bool strains_at_iterate);
   bool axialTangentChanges(const Eigen::VectorXd& q, double stiffWeight,
                            std::vector<RankOneTerm>& terms, std::vector<int>& points) const;
   // A^-1 u of the term at Gauss point `point`, from the columns kept for this factorisation.
@@ -235,8 +243,7 @@ class FullOrderSolver {
   bool step_starts_slack_ = false;       ///< a Gauss point below the linear range at its start
   long matrix_ga_step_ = -1;             ///< ga_steps_ when A_ was assembled at matrix_q_
   mutable Eigen::VectorXd matrix_eps_;   ///< axial strains at matrix_q_ (empty: not yet computed)
-  mutable Eigen::VectorXd iterate_eps_;  ///< axial strains at iterate_q_ (the last checked)
-  mutable Eigen::VectorXd iterate_q_;
+  mutable Eigen::VectorXd iterate_eps_;  ///< axial strains at the iterate last checked
   std::vector<RankOneTerm> rank_one_terms_;
   std::vector<int> rank_one_points_;  ///< the Gauss point (element-major index) of each term
   // A^-1 u of the terms' shapes for the factorisation matrix_factorization_, by Gauss point
