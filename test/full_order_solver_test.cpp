@@ -279,6 +279,12 @@ AncfRope tensionOnlyTestRope() {
   return rope;
 }
 
+NewtonSettings withoutRankOneTerms() {
+  NewtonSettings newton;
+  newton.rank_one_switch_updates = false;
+  return newton;
+}
+
 NewtonSettings freshMatrixNewton() {
   NewtonSettings newton;
   newton.reuse_matrix_near_convergence = false;
@@ -330,7 +336,7 @@ TEST(AnchoredRope, LastCorrectionReusingTheMatrixReachesTheFullNewtonState) {
   FullOrderSolver &reusing = v.reusing, &fresh = v.fresh;
   GroundContactParameters ground;
   ground.payload_height = 1.0;
-  ground.height = -10.0 - ground.payload_height + 0.05;  // 5 cm above the lowest pass
+  ground.height = -10.0 - ground.payload_height + 0.3;  // 5 cm above the lowest pass
   ground.damping = 2.0e3;
   for (FullOrderSolver* s : {&reusing, &fresh}) {
     s->setRopeDamping(1e-4);
@@ -359,6 +365,64 @@ TEST(AnchoredRope, LastCorrectionReusingTheMatrixReachesTheFullNewtonState) {
       "largest state difference %.3g m, %ld matrix-reusing corrections, %ld "
       "energy-consistent steps\n",
       largest, reusing.matrixReusingCorrections(), fresh.energyConsistentSteps());
+}
+
+TEST(AnchoredRope, TheContactsTangentChangesAsRankOneTermsReachTheFreshMatrixState) {
+  // A payload on the ground changes the iteration matrix's contact block at every iterate (the
+  // friction's slope about rest, a touchdown, a lift-off); with a slack rope the step keeps its
+  // factorisation and adds that block's change, by its eigenvectors, as rank-one terms beside
+  // the switched Gauss points' (FullOrderSolver::contactTangentChanges). Every step must end
+  // where the same step assembled and factorised afresh ends, where both take the same kind of
+  // step: the tension-only rule's choice between the generalized-alpha and the energy-consistent
+  // step (integrators/tension_only_step.hpp) turns on the contact's sign at the step's end,
+  // which a touchdown's 1e-10 m of Newton tolerance may flip. A tension-only rope swings 40 deg
+  // down onto a ground 0.3 m above its lowest pass: the load lands, slides under friction,
+  // bounces and comes to rest, its rope slackening and snatching.
+  AncfRope rope = tensionOnlyTestRope();
+  FixedAnchor anchor{Eigen::Vector3d(0, 0, 0)};
+  FullOrderSolver updating{rope, anchor, GeneralizedAlpha::fromRhoInf(0.9), 1e-3};
+  FullOrderSolver fresh{rope, anchor, GeneralizedAlpha::fromRhoInf(0.9), 1e-3,
+                        withoutRankOneTerms()};
+  GroundContactParameters ground;
+  ground.payload_height = 1.0;
+  ground.height = -10.0 - ground.payload_height + 0.3;
+  ground.damping = 1.0e5;  // (half the critical 2 sqrt(k m) of the 100 kg load)
+  ground.friction = 0.5;
+  const GroundContact contact(ground);
+  for (FullOrderSolver* x : {&updating, &fresh}) x->setGround(contact);
+  CoupledState s = fresh.solveSwingEquilibrium(40.0 * M_PI / 180.0, 0.0);
+  s.v.setZero();
+  fresh.initializeAccelerations(s);
+  const int e = rope.positionIndex(rope.nodes() - 1);
+  double largest = 0.0;
+  int touching = 0, other_kind = 0;
+  for (int k = 0; k < 3000; ++k) {
+    CoupledState a = s, b = s;
+    updating.continueSteppingOf(fresh);
+    const long ec_a = updating.energyConsistentSteps(), ec_b = fresh.energyConsistentSteps();
+    updating.step(a);
+    fresh.step(b);
+    if (updating.energyConsistentSteps() - ec_a != fresh.energyConsistentSteps() - ec_b) {
+      ++other_kind;
+    } else {
+      largest = std::max(largest, (a.q - b.q).cwiseAbs().maxCoeff());
+    }
+    if (contact.penetration(b.q.segment<3>(e)) > 0.0) ++touching;
+    s = b;
+  }
+  EXPECT_LT(largest, 1e-9) << "m between the two Newton variants' states";
+  EXPECT_LT(other_kind, 30) << "steps of another kind, of 3000";
+  EXPECT_GT(touching, 1000) << "steps with the payload on the ground, of 3000";
+  EXPECT_GT(updating.contactRankOneCorrections(), 300);
+  EXPECT_EQ(fresh.rankOneCorrections(), 0);
+  EXPECT_LT(updating.factorizations(), fresh.factorizations());
+  std::printf(
+      "largest state difference %.3g m (%d steps of another kind); %d steps on the ground; "
+      "rank-one corrections %ld (%ld with the contact's terms), factorisations %ld against %ld, "
+      "%ld energy-consistent steps\n",
+      largest, other_kind, touching, updating.rankOneCorrections(),
+      updating.contactRankOneCorrections(), updating.factorizations(), fresh.factorizations(),
+      fresh.energyConsistentSteps());
 }
 
 TEST(AnchoredRope, AnEnergyConsistentStepLosesThetaTimesItsVelocityJumpAndNoMore) {
@@ -471,10 +535,9 @@ TEST(AnchoredRope, SwitchedPointsAsRankOneTermsReachTheFreshMatrixState) {
   AncfRope rope(12, 10.0, 1.9, 2.2e7, 78.5, 0.0, {0, 0, -g});
   rope.setTensionOnly(true);
   FixedAnchor anchor{Eigen::Vector3d(0, 0, 0)};
-  NewtonSettings without;
-  without.rank_one_switch_updates = false;
   FullOrderSolver updating{rope, anchor, GeneralizedAlpha::fromRhoInf(0.9), 5e-4};
-  FullOrderSolver fresh{rope, anchor, GeneralizedAlpha::fromRhoInf(0.9), 5e-4, without};
+  FullOrderSolver fresh{rope, anchor, GeneralizedAlpha::fromRhoInf(0.9), 5e-4,
+                        withoutRankOneTerms()};
   CoupledState s;
   s.q = rope.stretchedStraight(Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), 0.0, 0.0);
   s.v = Eigen::VectorXd::Zero(s.q.size());

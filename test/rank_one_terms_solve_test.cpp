@@ -1,11 +1,13 @@
 // The solve with rank-one terms (solvers/rank_one_terms_solve.hpp) against a dense LU of the
 // matrix with the terms added, for terms that stiffen and soften, overlapping and apart; and the
 // axial law's rank-one share of an element tangent (ancfAxialTangentShape) against the tangent
-// of an unstretched element, where the law's other share vanishes.
+// of an unstretched element, where the law's other share vanishes; and a symmetric 3 x 3 block
+// (the ground contact's) as such terms.
 #include "crane_twin/solvers/rank_one_terms_solve.hpp"
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 
 using namespace crane_twin;
@@ -62,6 +64,62 @@ TEST(RankOneTermsSolve, RefusesATermThatMakesTheMatrixSingular) {
   const auto solve = [](const Eigen::VectorXd& r) { return r; };
   EXPECT_FALSE(solveWithRankOneTerms(solve, {t}, columns, Eigen::VectorXd::Ones(n), x));
   EXPECT_THROW(solveWithRankOneTerms(solve, {t, t}, columns, Eigen::VectorXd::Ones(n), x),
+               std::invalid_argument);
+}
+
+TEST(SymmetricBlockTerms, AddUpToTheBlockAndSolveAsItsDenseMatrix) {
+  // A symmetric indefinite 3 x 3 block (the ground contact's change at the payload point: a
+  // touchdown's -k on z, the friction's slope on x and y) as rank-one terms: their sum is the
+  // block at its rows, and the solve with them is the dense solve of A plus the block.
+  Eigen::Matrix3d D;
+  D << 4.0e3, -1.5e3, 0.0,  //
+      -1.5e3, 2.0e3, 0.0,   //
+      0.0, 0.0, -25.0;
+  const int n = 20, offset = 5, at = 3;
+  std::vector<RankOneTerm> terms;
+  ASSERT_EQ(symmetricBlockTerms(D, offset, at, 1e-12 * 4.0e3, terms), 3);
+  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(n, n);
+  for (const RankOneTerm& t : terms) {
+    Eigen::VectorXd full = Eigen::VectorXd::Zero(n);
+    full.segment<12>(t.offset) = t.u;
+    sum += t.c * full * full.transpose();
+    EXPECT_EQ(t.u.head(at).norm() + t.u.tail(12 - at - 3).norm(), 0.0) << "outside the block";
+  }
+  Eigen::MatrixXd expected = Eigen::MatrixXd::Zero(n, n);
+  expected.block<3, 3>(offset + at, offset + at) = D;
+  EXPECT_LT((sum - expected).cwiseAbs().maxCoeff(), 1e-12 * 4.0e3);
+  // The solve with the terms, against a dense LU of A + D at the block.
+  const Eigen::MatrixXd A =
+      1.0e4 * Eigen::MatrixXd::Identity(n, n) + Eigen::MatrixXd::Constant(n, n, 10.0);  // SPD
+  const Eigen::LLT<Eigen::MatrixXd> llt(A);
+  std::vector<Eigen::VectorXd> Y;
+  std::vector<const Eigen::VectorXd*> columns;
+  for (const RankOneTerm& t : terms) {
+    Eigen::VectorXd full = Eigen::VectorXd::Zero(n);
+    full.segment<12>(t.offset) = t.u;
+    Y.push_back(llt.solve(full));
+  }
+  for (const Eigen::VectorXd& y : Y) columns.push_back(&y);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  Eigen::VectorXd x;
+  const auto solve = [&](const Eigen::VectorXd& r) { return Eigen::VectorXd(llt.solve(r)); };
+  ASSERT_TRUE(solveWithRankOneTerms(solve, terms, columns, b, x));
+  const Eigen::VectorXd dense = (A + expected).fullPivLu().solve(b);
+  EXPECT_LT((x - dense).cwiseAbs().maxCoeff(), 1e-12 * dense.cwiseAbs().maxCoeff());
+}
+
+TEST(SymmetricBlockTerms, SkipRoundOffAndRefuseANonFiniteBlock) {
+  std::vector<RankOneTerm> terms;
+  EXPECT_EQ(symmetricBlockTerms(Eigen::Matrix3d::Zero(), 0, 0, 0.0, terms), 0);
+  // A rank-one block: its two zero eigenvalues are round-off.
+  const Eigen::Vector3d u(1.0, 2.0, -2.0);
+  EXPECT_EQ(symmetricBlockTerms(u * u.transpose(), 0, 0, 1e-12 * 9.0, terms), 1);
+  ASSERT_EQ(terms.size(), 1u);
+  EXPECT_NEAR(terms[0].c, 9.0, 1e-12);
+  Eigen::Matrix3d bad = Eigen::Matrix3d::Identity();
+  bad(1, 1) = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(symmetricBlockTerms(bad, 0, 0, 0.0, terms), -1);
+  EXPECT_THROW(symmetricBlockTerms(Eigen::Matrix3d::Identity(), 0, 10, 0.0, terms),
                std::invalid_argument);
 }
 

@@ -167,7 +167,7 @@ void FullOrderSolver::assemble(const Eigen::VectorXd& q, const Eigen::VectorXd& 
              : ground_->force(q.segment<3>(e), v.segment<3>(e));
     Q.segment<3>(e) -= c.f;
     if (matrix && (c.df_dr.any() || c.df_dv.any())) {
-      const Eigen::Matrix3d Ac = -stiffWeight * c.df_dr - dampWeight * c.df_dv;
+      const Eigen::Matrix3d Ac = contactMatrixPart(c, stiffWeight, dampWeight);
       for (int j = 0; j < 3; ++j)
         for (int i = 0; i < 3; ++i) A_.coeffRef(e + i, e + j) += Ac(i, j);
     }
@@ -456,17 +456,18 @@ bool FullOrderSolver::generalizedAlphaStep(CoupledState& s, double h, std::strin
                                      column_factorization_ == matrix_factorization_ &&
                                      !column_point_.empty();
     const bool this_steps_matrix =
-        !w.keep_matrix && matrix_ga_step_ == ga_steps_ && step_starts_slack_;
+        !w.keep_matrix && matrix_ga_step_ == ga_steps_ && step_looks_for_switches_;
     bool strains_at_iterate = false;  // iterate_eps_ holds x.q's strains
     if ((offered_across_switch || offered_after_terms || this_steps_matrix) &&
         rankOneTermsApply(x.q, h)) {
-      const bool few = axialTangentChanges(x.q, w.stiffness, rank_one_terms_, rank_one_points_);
+      const bool few = axialTangentChanges(x.q, w.stiffness, rank_one_terms_, rank_one_points_) &&
+                       contactTangentChanges(x.q, x.v, w, rank_one_terms_, rank_one_points_);
       strains_at_iterate = true;
       keep = few && (offered_after_terms || !rank_one_terms_.empty());
       if (!keep) rank_one_terms_.clear();
     }
     assemble(x.q, x.v, w.mass, w.stiffness, w.damping, w.G, Q, nullptr, !keep);
-    if (!keep) assembledMatrixAt(x.q, h, strains_at_iterate);
+    if (!keep) assembledMatrixAt(x, w, h, strains_at_iterate);
     Eigen::VectorXd rhs(n + 3);
     rhs.head(n) = -w.stiffness * (M * x.qdd + Q - rope_.gravityForce());
     rhs.head<3>() -= w.stiffness * x.lambda;
@@ -475,18 +476,21 @@ bool FullOrderSolver::generalizedAlphaStep(CoupledState& s, double h, std::strin
       Eigen::VectorXd dx;
       const auto solve = [this](const Eigen::VectorXd& b) { return solveFactorized(b); };
       std::vector<const Eigen::VectorXd*> columns;
+      contact_columns_.clear();
       for (std::size_t j = 0; j < rank_one_terms_.size(); ++j)
         columns.push_back(&rankOneColumn(rank_one_terms_[j], rank_one_points_[j]));
       if (solveWithRankOneTerms(solve, rank_one_terms_, columns, rhs, dx)) {
         ++matrix_reusing_corrections_;
         ++rank_one_corrections_;
+        if (std::count(rank_one_points_.begin(), rank_one_points_.end(), kContactPoint) > 0)
+          ++contact_rank_one_corrections_;
         dq = dx.head(n);
         dmu = dx.tail<3>();
         return true;
       }
       // The terms' system singular: this iterate's own matrix.
       assemble(x.q, x.v, w.mass, w.stiffness, w.damping, w.G, Q, nullptr, true);
-      assembledMatrixAt(x.q, h, strains_at_iterate);
+      assembledMatrixAt(x, w, h, strains_at_iterate);
       keep = false;
     }
     const bool ok = solveIncrement(rhs, dq, dmu, reason, !keep);
@@ -494,15 +498,18 @@ bool FullOrderSolver::generalizedAlphaStep(CoupledState& s, double h, std::strin
     return ok;
   };
   ++ga_steps_;
-  // Within a step, only a rope slack somewhere at its start looks for switched points (a taut
-  // rope's corrections that miss quadratic contraction do so for its geometry, not its law).
-  step_starts_slack_ = rankOneTermsPossible() && axialStrainsAt(s.q).minCoeff() < kSlackBand;
+  // Within a step, only a rope slack somewhere at its start, or a payload on the ground, looks
+  // for switched points (a taut rope's corrections that miss quadratic contraction do so for
+  // its geometry, not its law).
+  step_looks_for_switches_ = rankOneTermsPossible() &&
+                             (payloadTouchesAt(s.q) || axialStrainsAt(s.q).minCoeff() < kSlackBand);
   return newtonStep(ga_, support_, newton_, h, increment, s, why, nullptr, &newton_memory_);
 }
 
-void FullOrderSolver::assembledMatrixAt(const Eigen::VectorXd& q, double h,
+void FullOrderSolver::assembledMatrixAt(const CoupledState& x, const NewtonWeights& w, double h,
                                         bool strains_at_iterate) {
-  matrix_q_ = q;
+  matrix_q_ = x.q;
+  matrix_contact_ = contactMatrixPartAt(x.q, x.v, w);
   if (strains_at_iterate)
     std::swap(matrix_eps_, iterate_eps_);
   else
@@ -520,7 +527,43 @@ bool FullOrderSolver::rankOneTermsPossible() const {
 bool FullOrderSolver::rankOneTermsApply(const Eigen::VectorXd& q, double h) const {
   return rankOneTermsPossible() && matrix_q_.size() == q.size() && matrix_h_ == h &&
          matrix_revision_ == rope_.revision() && band_factorized_ &&
-         matrix_factorization_ == factorizations_ && payloadClearAtMatrixAnd(q);
+         matrix_factorization_ == factorizations_;
+}
+
+bool FullOrderSolver::payloadTouchesAt(const Eigen::VectorXd& q) const {
+  return ground_ &&
+         ground_->penetration(q.segment<3>(rope_.positionIndex(rope_.nodes() - 1))) > 0.0;
+}
+
+Eigen::Matrix3d FullOrderSolver::contactMatrixPart(const GroundContactForce& c, double stiffWeight,
+                                                   double dampWeight) {
+  return -stiffWeight * c.df_dr - dampWeight * c.df_dv;
+}
+
+Eigen::Matrix3d FullOrderSolver::contactMatrixPartAt(const Eigen::VectorXd& q,
+                                                     const Eigen::VectorXd& v,
+                                                     const NewtonWeights& w) const {
+  if (!ground_) return Eigen::Matrix3d::Zero();
+  const int e = rope_.positionIndex(rope_.nodes() - 1);
+  return contactMatrixPart(ground_->force(q.segment<3>(e), v.segment<3>(e)), w.stiffness,
+                           w.damping);
+}
+
+// The contact's share of A_ at (q, v) less its share at the matrix's iterate, as rank-one
+// terms at the payload point (symmetricBlockTerms).
+bool FullOrderSolver::contactTangentChanges(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                            const NewtonWeights& w, std::vector<RankOneTerm>& terms,
+                                            std::vector<int>& points) const {
+  if (!ground_) return true;
+  const Eigen::Matrix3d at = contactMatrixPartAt(q, v, w);
+  const double size = std::max(at.cwiseAbs().maxCoeff(), matrix_contact_.cwiseAbs().maxCoeff());
+  const int e = rope_.positionIndex(rope_.nodes() - 1);
+  // (twelve entries from the offset within A_: the end node's positions at 3)
+  const int added =
+      symmetricBlockTerms(at - matrix_contact_, e - 3, 3, kContactRoundOff * size, terms);
+  if (added < 0) return false;
+  points.insert(points.end(), added, kContactPoint);
+  return true;
 }
 
 bool FullOrderSolver::payloadClearAtMatrixAnd(const Eigen::VectorXd& q) const {
@@ -566,6 +609,19 @@ const Eigen::VectorXd& FullOrderSolver::rankOneColumn(const RankOneTerm& term, i
     column_factorization_ = matrix_factorization_;
     column_point_.clear();
     column_.clear();
+  }
+  if (point == kContactPoint) {
+    // A^-1 u = sum_i u_i A^-1 e_i over the end node's three positions (their columns kept under
+    // the ids -1 - i).
+    Eigen::VectorXd y = Eigen::VectorXd::Zero(A_.rows());
+    for (int i = 0; i < 3; ++i) {
+      RankOneTerm unit;
+      unit.offset = term.offset;
+      unit.u(3 + i) = 1.0;
+      y += term.u(3 + i) * rankOneColumn(unit, -1 - i);
+    }
+    contact_columns_.push_back(std::move(y));
+    return contact_columns_.back();
   }
   for (std::size_t j = 0; j < column_point_.size(); ++j)
     if (column_point_[j] == point) return column_[j];

@@ -5,6 +5,26 @@
 
 namespace crane_twin {
 
+int symmetricBlockTerms(const Eigen::Matrix3d& D, int offset, int at, double round_off,
+                        std::vector<RankOneTerm>& terms) {
+  if (at < 0 || at > 9) throw std::invalid_argument("rank-one terms: a 3 x 3 block at 0 .. 9");
+  if (!D.allFinite()) return -1;
+  if (D.isZero(0.0)) return 0;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(D);
+  if (eig.info() != Eigen::Success) return -1;
+  int added = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (!(std::abs(eig.eigenvalues()(i)) > round_off)) continue;
+    RankOneTerm t;
+    t.offset = offset;
+    t.u.segment<3>(at) = eig.eigenvectors().col(i);
+    t.c = eig.eigenvalues()(i);
+    terms.push_back(t);
+    ++added;
+  }
+  return added;
+}
+
 bool solveWithRankOneTerms(const std::function<Eigen::VectorXd(const Eigen::VectorXd&)>& solve,
                            const std::vector<RankOneTerm>& terms,
                            const std::vector<const Eigen::VectorXd*>& columns,

@@ -110,6 +110,8 @@ class FullOrderSolver {
   /// Corrections that kept the factorisation with rank-one terms for Gauss points whose axial
   /// law changed branch since (see rankOneTermsApply).
   long rankOneCorrections() const { return rank_one_corrections_; }
+  /// Of those, the corrections whose terms include the ground contact's.
+  long contactRankOneCorrections() const { return contact_rank_one_corrections_; }
   /// Factorisations of the iteration matrix so far.
   long factorizations() const { return factorizations_; }
 
@@ -218,29 +220,52 @@ class FullOrderSolver {
   // (rank_one_terms_solve.hpp; docs/model.md "Full-order solution"). axialTangentChanges
   // collects them: stiffWeight w_g l (N'(eps_g(q)) - N'(eps_g(matrix_q_))) v v^T with
   // v = S_x^T t at matrix_q_ (ancfAxialTangentShape); false where more than kMaxRankOneTerms points
-  // changed. Only where nothing else in A_ switches (no rigging, no rope damping, the payload
-  // clear of the ground) and A_'s factorisation is that generalized-alpha matrix, of this step
-  // size and rope length.
+  // changed. With a ground, the change of the contact's 3 x 3 block at the payload point joins
+  // them (contactTangentChanges: a touchdown, a lift-off, the friction's slope). Only where
+  // nothing else in A_ switches (no rigging, no rope damping) and A_'s factorisation is that
+  // generalized-alpha matrix, of this step size and rope length.
   bool rankOneTermsApply(const Eigen::VectorXd& q, double h) const;
   // What rankOneTermsApply asks of the rope and the settings alone.
   bool rankOneTermsPossible() const;
   // The payload clear of the ground at matrix_q_ and at q (always, without a ground).
   bool payloadClearAtMatrixAnd(const Eigen::VectorXd& q) const;
+  // The payload pressed into the ground at q (penetration > 0; never without a ground).
+  bool payloadTouchesAt(const Eigen::VectorXd& q) const;
+  // The ground's share of A_ at the payload point, -beta h^2 df/dr - gamma h df/dv, from the
+  // contact's derivatives c and the two weights; and at a generalized-alpha iterate (q, v).
+  static Eigen::Matrix3d contactMatrixPart(const GroundContactForce& c, double stiffWeight,
+                                           double dampWeight);
+  Eigen::Matrix3d contactMatrixPartAt(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                                      const NewtonWeights& w) const;
+  // Appends the change of the contact's share since matrix_q_ (matrix_contact_) as up to three
+  // rank-one terms at the payload point (point id kContactPoint); false where the block's
+  // eigen-decomposition fails.
+  bool contactTangentChanges(const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                             const NewtonWeights& w, std::vector<RankOneTerm>& terms,
+                             std::vector<int>& points) const;
+  static constexpr int kContactPoint = -10;  ///< rank_one_points_ id of a contact term
+  /// A contact term's weight counts as zero below this fraction of the contact block's entries.
+  static constexpr double kContactRoundOff = 1e-12;
+  Eigen::Matrix3d matrix_contact_ = Eigen::Matrix3d::Zero();  ///< the contact's share at matrix_q_
+  std::deque<Eigen::VectorXd> contact_columns_;  ///< this correction's contact-term columns
   // A generalized-alpha matrix assembled at q for step size h: matrix_q_ and what goes with it;
   // the strains at q taken from iterate_eps_ where strains_at_iterate (axialTangentChanges ran
   // at q), else computed when next asked.
-  void assembledMatrixAt(const Eigen::VectorXd& q, double h, bool strains_at_iterate);
+  void assembledMatrixAt(const CoupledState& x, const NewtonWeights& w, double h,
+                         bool strains_at_iterate);
   bool axialTangentChanges(const Eigen::VectorXd& q, double stiffWeight,
                            std::vector<RankOneTerm>& terms, std::vector<int>& points) const;
   // A^-1 u of the term at Gauss point `point`, from the columns kept for this factorisation.
   const Eigen::VectorXd& rankOneColumn(const RankOneTerm& term, int point);
   static constexpr int kMaxRankOneTerms = 12;
-  long factorizations_ = 0;              ///< factorizeIterationMatrix calls
-  long matrix_factorization_ = -1;       ///< factorizations_ of A_ at matrix_q_
-  double matrix_h_ = 0.0;                ///< the step size of A_ at matrix_q_ [s]
-  std::uint64_t matrix_revision_ = 0;    ///< the rope's revision() then (a new length: a new A_)
-  long ga_steps_ = 0;                    ///< generalized-alpha steps begun
-  bool step_starts_slack_ = false;       ///< a Gauss point below the linear range at its start
+  long factorizations_ = 0;            ///< factorizeIterationMatrix calls
+  long matrix_factorization_ = -1;     ///< factorizations_ of A_ at matrix_q_
+  double matrix_h_ = 0.0;              ///< the step size of A_ at matrix_q_ [s]
+  std::uint64_t matrix_revision_ = 0;  ///< the rope's revision() then (a new length: a new A_)
+  long ga_steps_ = 0;                  ///< generalized-alpha steps begun
+  /// The step's corrections look for switched points: at its start a Gauss point below the
+  /// linear range, or the payload on the ground.
+  bool step_looks_for_switches_ = false;
   long matrix_ga_step_ = -1;             ///< ga_steps_ when A_ was assembled at matrix_q_
   mutable Eigen::VectorXd matrix_eps_;   ///< axial strains at matrix_q_ (empty: not yet computed)
   mutable Eigen::VectorXd iterate_eps_;  ///< axial strains at the iterate last checked
@@ -252,6 +277,7 @@ class FullOrderSolver {
   std::vector<int> column_point_;
   std::deque<Eigen::VectorXd> column_;  // (push_back keeps references to the others)
   long rank_one_corrections_ = 0;
+  long contact_rank_one_corrections_ = 0;
   SparseMatrix A_;               ///< KKT iteration matrix, pattern fixed at construction
   std::vector<int> mass_index_;  ///< value slot of each mass entry (in M's order)
   std::vector<double> mass_value_;
