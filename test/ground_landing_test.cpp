@@ -13,6 +13,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "crane_twin/io/input_error.hpp"
@@ -560,6 +561,64 @@ trolley: {radius: 30}
     refused({"ground.height=10", model}, "rope.length");
     refused({"ground.height=10", model, "initial.mode=stress_free"}, "rope.length");
   }
+  // A ground beyond any site (docs/scenes.md: within a kilometre of the crane's base), hanging
+  // or landed: refused before anything is computed from it.
+  for (const char* height : {"ground.height=1e300", "ground.height=-1e300", "ground.height=1001"}) {
+    refused({height}, "ground.height");
+    refused({height, "initial.mode=landed"}, "ground.height");
+  }
+}
+
+// The landed start's message names the rope's top as the structure holds what hangs from it: a
+// load the rope cannot reach (or above the top) must not first weigh the structure down by the
+// rope its span would take (a kilometre of it sank the modal T8036's top to z = -28 m).
+TEST(GroundLanding, AnUnreachableLandedLoadIsNamedFromTheTopItsRopeHolds) {
+  const std::string crane = std::string(CRANE_TWIN_SOURCE_DIR) + "/config/cranes/t8036.yaml";
+  const std::string base = "crane: " + crane + R"(
+duration: 1.0
+time_step: 0.001
+rope: {model: full, elements: 10, length: 60.0}
+payload: {mass: 3600}
+trolley: {radius: 30}
+initial: {mode: landed}
+)";
+  // The message of a refused start, and the top z it names.
+  auto refusal = [&](const std::vector<std::string>& sets, double& top_z) {
+    const std::string path = writeScene("unreachable", base);
+    try {
+      const CraneModel m = buildCraneModel(loadScene(path, sets));
+      std::unique_ptr<Simulation> sim = makeSimulation(m);
+      sim->initialize();
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      const std::string tag = "rope's top (z = ";
+      const std::size_t at = what.find(tag);
+      top_z = at == std::string::npos ? std::nan("") : std::stod(what.substr(at + tag.size()));
+      return what;
+    }
+    return std::string("accepted");
+  };
+  // 900 m down: 60 m of rope do not reach; 900 m up: the load stands above the rope's top.
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"ground.height=-900", "rope.length"}, {"ground.height=900", "ground.height"}};
+  for (const auto& [height, key] : cases) {
+    double rigid_top = 0.0, modal_top = 0.0;
+    const std::string rigid = refusal({height, "structure.model=rigid"}, rigid_top);
+    const std::string modal =
+        refusal({height, "structure.model=modal", "structure.modes=10"}, modal_top);
+    EXPECT_NE(rigid.find("key '" + key + "'"), std::string::npos) << rigid;
+    EXPECT_NE(modal.find("key '" + key + "'"), std::string::npos) << modal;
+    // The rigid top is the undeformed one (about 68 m up); the modal run's sinks under the
+    // trolley and at most the 60 m of rope there are (centimetres), not under the span's rope.
+    EXPECT_GT(rigid_top, 60.0) << rigid;
+    EXPECT_NEAR(modal_top, rigid_top, 0.5) << modal;
+  }
+  // Two grounds out of reach: the same 60 m of rope hang from the top either way, so the top
+  // the messages name is the same.
+  double near_top = 0.0, far_top = 0.0;
+  refusal({"ground.height=-100", "structure.model=modal", "structure.modes=10"}, near_top);
+  refusal({"ground.height=-1000", "structure.model=modal", "structure.modes=10"}, far_top);
+  EXPECT_NEAR(far_top, near_top, 1e-9);
 }
 
 // The rope settled between two held points (the landed start's off-centre rope) against the

@@ -366,7 +366,8 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   if (root.has("ground")) {
     ConfigNode n = root.map("ground");
     GroundSettings g;
-    g.height = n.number("height", 0.0, Bounds::any());
+    // (a kilometre above or below the crane's base: beyond any site)
+    g.height = n.number("height", 0.0, Bounds::closed(-1000.0, 1000.0));
     // (concrete under a load's footprint is some 1e9 to 1e10 N/m)
     g.stiffness = n.number("stiffness", 1e8, {0.0, 1e14, true, false});
     g.damping_ratio = n.number("damping_ratio", 1.0, Bounds::closed(0.0, 10.0));

@@ -230,9 +230,12 @@ CoupledState SupportedRopeSimulation::landedState() {
     for (int pass = 0; pass < 2; ++pass) {
       Eigen::Vector3d dir;
       const double span = landedSpan(support_->point(z), dir);
-      if (!(span > 0.0)) break;  // landedStateAt names it
-      const double held =
-          model_.trolleyMass() + model_.rope.mass_per_length * unloadedHangingLength(span) + hook;
+      // A load above the top: landedStateAt names it, from this top. One out of the rope's reach
+      // is named there too: what hangs is then at most the rope there is, not the rope the
+      // span would take (a kilometre's weight sank the modal T8036's top by 96 m first).
+      if (!(span > 0.0) || !(dir.z() < 0.0)) break;
+      const double hanging = std::min(unloadedHangingLength(span), sc.rope.length);
+      const double held = model_.trolleyMass() + model_.rope.mass_per_length * hanging + hook;
       support_->setIterationWeights(0.0, 0.0, 1.0);
       z = support_->solvePointForce(Eigen::Vector3d(0.0, 0.0, -held * sc.gravity));
     }
