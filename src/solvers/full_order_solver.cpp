@@ -530,9 +530,12 @@ bool FullOrderSolver::rankOneTermsApply(const Eigen::VectorXd& q, double h) cons
          matrix_factorization_ == factorizations_;
 }
 
+double FullOrderSolver::payloadPenetrationAt(const Eigen::VectorXd& q) const {
+  return ground_->penetration(q.segment<3>(rope_.positionIndex(rope_.nodes() - 1)));
+}
+
 bool FullOrderSolver::payloadTouchesAt(const Eigen::VectorXd& q) const {
-  return ground_ &&
-         ground_->penetration(q.segment<3>(rope_.positionIndex(rope_.nodes() - 1))) > 0.0;
+  return ground_ && payloadPenetrationAt(q) > 0.0;
 }
 
 Eigen::Matrix3d FullOrderSolver::contactMatrixPart(const GroundContactForce& c, double stiffWeight,
@@ -567,10 +570,7 @@ bool FullOrderSolver::contactTangentChanges(const Eigen::VectorXd& q, const Eige
 }
 
 bool FullOrderSolver::payloadClearAtMatrixAnd(const Eigen::VectorXd& q) const {
-  if (!ground_) return true;
-  const int e = rope_.positionIndex(rope_.nodes() - 1);
-  return ground_->penetration(matrix_q_.segment<3>(e)) <= 0.0 &&
-         ground_->penetration(q.segment<3>(e)) <= 0.0;
+  return !ground_ || (payloadPenetrationAt(matrix_q_) <= 0.0 && payloadPenetrationAt(q) <= 0.0);
 }
 
 // A_ at q differs from A_ at matrix_q_ by stiffWeight times the change of the element tangents;

@@ -231,6 +231,8 @@ class FullOrderSolver {
   bool payloadClearAtMatrixAnd(const Eigen::VectorXd& q) const;
   // The payload pressed into the ground at q (penetration > 0; never without a ground).
   bool payloadTouchesAt(const Eigen::VectorXd& q) const;
+  // The payload point's penetration into the ground at q [m] (a ground must be set).
+  double payloadPenetrationAt(const Eigen::VectorXd& q) const;
   // The ground's share of A_ at the payload point, -beta h^2 df/dr - gamma h df/dv, from the
   // contact's derivatives c and the two weights; and at a generalized-alpha iterate (q, v).
   static Eigen::Matrix3d contactMatrixPart(const GroundContactForce& c, double stiffWeight,
