@@ -34,6 +34,15 @@ struct SmallRope {
   const AncfRope& rope() const { return sim.crane().rope(); }
 };
 
+// The small rope at its hanging start, with what the basis tests read of it.
+struct SmallRopeAtRest {
+  SmallRope r;
+  const InvariantRopeBasis& b = (r.sim.initialize(), r.sim.basis());
+  const AncfRope& rope = r.rope();
+  const double L = rope.length();
+  const SparseMatrix& M = rope.massMatrix();
+};
+
 // A deformed reduced state: the hanging equilibrium plus random amplitudes on every shape.
 Eigen::VectorXd deformed(const InvariantReducedSimulation& sim, unsigned seed) {
   std::mt19937 gen(seed);
@@ -288,12 +297,8 @@ TEST(InvariantBasis, HoistingKeepsTheCoordinates) {
 // state the basis already holds; and the reduced force on the new basis is still the energy's
 // gradient (central differences).
 TEST(InvariantBasis, ShapesOfAStateItDoesNotHoldAreAddedExactlyAndRotationInvariant) {
-  SmallRope r;
-  r.sim.initialize();
-  const InvariantRopeBasis& b = r.sim.basis();
-  const AncfRope& rope = r.rope();
-  const double L = rope.length();
-  const SparseMatrix& M = rope.massMatrix();
+  SmallRopeAtRest at_rest;
+  const auto& [r, b, rope, L, M] = at_rest;
   const auto dropped = [&](const InvariantRopeBasis& basis, const Eigen::VectorXd& q) {
     const InvariantRopeBasis::Projection project(basis, M, L);
     const Eigen::VectorXd e = basis.expand(project(q), L);
@@ -328,6 +333,53 @@ TEST(InvariantBasis, ShapesOfAStateItDoesNotHoldAreAddedExactlyAndRotationInvari
                 1e-9 * rope.elasticEnergy(q));
   }
   EXPECT_EQ(b.withShapesOf(hanging, M, L).shapes(), b.shapes());
+}
+
+// The hand-back's projection with the top and the end node held (docs/model.md "Hand-over to
+// full order"): on a state the basis does not hold it returns the top's and the end node's
+// positions exactly, and it is the constrained minimiser of the M-weighted distance, checked
+// against an independent dense KKT solve over the full coordinates (B^T M B y + C^T mu = B^T M x,
+// C y = C-rows of x); a state the basis holds comes back exactly, as from the plain projection;
+// and the plain projection moves the end (what the held one exists for).
+TEST(InvariantBasis, ProjectionWithEndsHeldKeepsTopAndEndAndMinimisesTheMassDistance) {
+  SmallRopeAtRest at_rest;
+  const auto& [r, b, rope, L, M] = at_rest;
+  const InvariantRopeBasis::Projection project(b, M, L);
+  const int end = rope.nodes() - 1;
+  const int n = 6 * rope.nodes();  // (no rigging: the rope's own coordinates)
+  ASSERT_EQ(M.rows(), n);
+  Eigen::VectorXd x = b.expand(r.sim.reducedState().q, L);
+  std::mt19937 gen(7);
+  std::uniform_real_distribution<double> u(-0.03, 0.03);
+  for (int i = 0; i < n; ++i) x(i) += u(gen);
+  const Eigen::VectorXd y = project.withEndsHeld(x);
+  const Eigen::VectorXd e = b.expand(y, L);
+  EXPECT_LT((e.head<3>() - x.head<3>()).norm(), 1e-12);
+  EXPECT_LT((e.segment<3>(6 * end) - x.segment<3>(6 * end)).norm(), 1e-12);
+  // The plain projection of this state moves the end (by 1.2e-5 m: the end mass weighs it).
+  const Eigen::VectorXd plain = b.expand(project(x), L);
+  EXPECT_GT((plain.segment<3>(6 * end) - x.segment<3>(6 * end)).norm(), 1e-6);
+  // Dense KKT over y with B the expansion's (linear) matrix, built column by column.
+  const int m = b.coordinates();
+  Eigen::MatrixXd B(n, m);
+  for (int k = 0; k < m; ++k) B.col(k) = b.expand(Eigen::VectorXd::Unit(m, k), L);
+  const Eigen::MatrixXd Md = Eigen::MatrixXd(M);
+  Eigen::MatrixXd C(6, n);
+  C.setZero();
+  C.block<3, 3>(0, 0).setIdentity();
+  C.block<3, 3>(3, 6 * end).setIdentity();
+  Eigen::MatrixXd K(m + 6, m + 6);
+  K.setZero();
+  K.topLeftCorner(m, m) = B.transpose() * Md * B;
+  K.topRightCorner(m, 6) = (C * B).transpose();
+  K.bottomLeftCorner(6, m) = C * B;
+  Eigen::VectorXd rhs(m + 6);
+  rhs << B.transpose() * Md * x, C * x;
+  const Eigen::VectorXd kkt = K.fullPivLu().solve(rhs);
+  EXPECT_LT((B * kkt.head(m) - e).cwiseAbs().maxCoeff(), 1e-10);
+  // A state the basis holds is returned exactly.
+  const Eigen::VectorXd held = b.expand(deformed(r.sim, 3), L);
+  EXPECT_LT((b.expand(project.withEndsHeld(held), L) - held).cwiseAbs().maxCoeff(), 1e-10);
 }
 
 TEST(InvariantReduced, RopeSwingAgreesWithFullOrderWithinOneCentimetre) {

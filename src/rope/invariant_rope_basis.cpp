@@ -236,6 +236,14 @@ InvariantRopeBasis::Projection::Projection(const InvariantRopeBasis& basis, cons
   MsP_ = SparseMatrix(scalarBlock(M, 0).topLeftCorner(ns, ns)) * P;
   Mr_ = P.transpose() * MsP_;
   ldlt_.compute(Mr_);
+  // (psi_0 = 1 at every node, slopes 0; every other shape is zero at the top)
+  const int m = static_cast<int>(P.cols());
+  end_row_ = P.row(ns - 2).transpose();  // the last node's position row
+  if (m > 1) {
+    inner_ldlt_.compute(Mr_.bottomRightCorner(m - 1, m - 1));
+    g_ = inner_ldlt_.solve(end_row_.tail(m - 1));
+    end_gain_ = end_row_.tail(m - 1).dot(g_);
+  }
 }
 
 Eigen::VectorXd InvariantRopeBasis::Projection::operator()(const Eigen::VectorXd& x) const {
@@ -243,6 +251,26 @@ Eigen::VectorXd InvariantRopeBasis::Projection::operator()(const Eigen::VectorXd
   const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> X(x.data(), 3, MsP_.rows());
   const Eigen::MatrixXd rhs = X * MsP_;  // 3 x m
   const Eigen::MatrixXd Y = ldlt_.solve(rhs.transpose()).transpose();
+  return Eigen::Map<const Eigen::VectorXd>(Y.data(), Y.size());
+}
+
+Eigen::VectorXd InvariantRopeBasis::Projection::withEndsHeld(const Eigen::VectorXd& x) const {
+  const int ns = static_cast<int>(MsP_.rows()), m = static_cast<int>(MsP_.cols());
+  // (no shape but psi_0 and psi_1 would leave nothing to choose; a basis always has more)
+  if (m < 2 || !(end_gain_ > 0.0)) return (*this)(x);
+  const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> X(x.data(), 3, ns);
+  Eigen::Matrix<double, 3, Eigen::Dynamic> Y(3, m);
+  for (int c = 0; c < 3; ++c) {
+    const double top = X(c, 0);
+    // z = x - top psi_0: psi_0's rows are 1 at the positions (even rows) and 0 at the slopes.
+    Eigen::RowVectorXd z = X.row(c);
+    for (int i = 0; i < ns; i += 2) z(i) -= top;
+    const Eigen::VectorXd rhs = (z * MsP_).tail(m - 1).transpose();
+    Eigen::VectorXd y = inner_ldlt_.solve(rhs);
+    y += g_ * ((z(ns - 2) - end_row_.tail(m - 1).dot(y)) / end_gain_);
+    Y(c, 0) = top;
+    Y.row(c).tail(m - 1) = y.transpose();
+  }
   return Eigen::Map<const Eigen::VectorXd>(Y.data(), Y.size());
 }
 

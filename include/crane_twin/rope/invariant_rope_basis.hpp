@@ -81,12 +81,23 @@ class InvariantRopeBasis {
    public:
     Projection(const InvariantRopeBasis& basis, const SparseMatrix& M, double L);
     Eigen::VectorXd operator()(const Eigen::VectorXd& x) const;
+    /// The same projection with the top and last node's positions held: per direction,
+    ///   min (x - Psi y)^T M_s (x - Psi y)  subject to  y_0 = x_top,  psi(1)^T y = x_end,
+    /// i.e. y' = M'^-1 Psi'^T M_s z + g (z_end - psi'(1)^T M'^-1 Psi'^T M_s z) / (psi'(1)^T g),
+    /// z = x - x_top psi_0, g = M'^-1 psi'(1) (primes: without psi_0). Applied to velocities it
+    /// keeps the top's and the end mass's velocity exactly (docs/model.md "Hand-over to full
+    /// order"); a state the basis holds is returned exactly, as by operator().
+    Eigen::VectorXd withEndsHeld(const Eigen::VectorXd& x) const;
     /// Scalar reduced mass M_rs = Psi^T M_s Psi (m x m).
     const Eigen::MatrixXd& scalarMass() const { return Mr_; }
 
    private:
     Eigen::MatrixXd MsP_, Mr_;
     Eigen::LDLT<Eigen::MatrixXd> ldlt_;
+    // withEndsHeld: the factorised M' (psi_0 left out), g = M'^-1 psi'(1), psi'(1)^T g, psi(1).
+    Eigen::LDLT<Eigen::MatrixXd> inner_ldlt_;
+    Eigen::VectorXd end_row_, g_;
+    double end_gain_ = 0.0;
   };
 
  private:

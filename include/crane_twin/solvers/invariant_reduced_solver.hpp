@@ -125,11 +125,13 @@ class InvariantReducedSolver {
   /// Restart the switching bookkeeping (a new run, or a take-over from full order).
   void resetSwitching();
 
-  /// The reduced state of a full-coordinate state (M-orthogonal projection of q, v, q'', a; the
-  /// top position made exact); and the full-coordinate state of a reduced one.
+  /// The reduced state of a full-coordinate state (M-orthogonal projection of q, v, q'', a with
+  /// the top's and the hoist rope's end node's values held exactly,
+  /// InvariantRopeBasis::Projection::withEndsHeld); and the full-coordinate state of a reduced one.
   CoupledState project(const CoupledState& full) const;
   CoupledState expand(const CoupledState& reduced) const;
-  /// Largest node distance between full positions q and their projection's expansion [m].
+  /// Largest node distance between full positions q and their projection's expansion (project's,
+  /// the ends held) [m].
   double projectionError(const Eigen::VectorXd& q) const;
 
   /// Reduced elastic (and damping) force Q_r(y, y') and the elastic energy U(B y) [J].
