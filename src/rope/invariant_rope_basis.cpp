@@ -256,7 +256,7 @@ Eigen::VectorXd InvariantRopeBasis::Projection::operator()(const Eigen::VectorXd
 
 Eigen::VectorXd InvariantRopeBasis::Projection::withEndsHeld(const Eigen::VectorXd& x) const {
   const int ns = static_cast<int>(MsP_.rows()), m = static_cast<int>(MsP_.cols());
-  // (no shape but psi_0 and psi_1 would leave nothing to choose; a basis always has more)
+  // (a basis of psi_0 alone, or whose shapes all vanish at the end, has no end to hold)
   if (m < 2 || !(end_gain_ > 0.0)) return (*this)(x);
   const Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>> X(x.data(), 3, ns);
   Eigen::Matrix<double, 3, Eigen::Dynamic> Y(3, m);
