@@ -43,7 +43,10 @@ one() {
   }
   local wf wr wp ho
   wf=$(wall full); wr=$(wall reduced); wp=$(wall pendulum)
-  ho=$(sed -n 's/.*hand_overs=\([^ ]*\) full_order_steps=\([^ ]*\).*/\1 | \2/p' "$OUT/${name}_reduced.log")
+  # (hand-overs, with the speculative hand-backs taken back where any, and full-order steps)
+  ho=$(sed -n 's/.*hand_overs=\([^ ]*\) taken_back=\([^ ]*\) full_order_steps=\([^ ]*\).*/\1 \2 \3/p' \
+    "$OUT/${name}_reduced.log" |
+    awk '{printf "%s%s | %s", $1, ($2 > 0 ? " (" $2 " taken back)" : ""), $3}')
   local spread=""
   if [ -n "$REFERENCE_DT" ]; then
     spread="$(errs fine | awk -F' [|] ' '{printf "%s / %s |", $1, $2}')"

@@ -32,6 +32,7 @@ diagnostic_msgs::DiagnosticStatus simulationStatus(const NodeRunRecord& r) {
   }
   addNumber(d, "hand_overs", static_cast<double>(r.statistics.hand_overs));
   addNumber(d, "full_order_steps", static_cast<double>(r.statistics.full_order_steps));
+  addNumber(d, "hand_backs_taken_back", static_cast<double>(r.statistics.hand_backs_taken_back));
   addNumber(d, "rejected_commands", static_cast<double>(r.rejected_commands));
   addNumber(d, "pacing_overruns", static_cast<double>(r.pacing_overruns));
   addNumber(d, "warnings_seen", r.warnings_seen);

@@ -12,7 +12,8 @@ void HandOverSimulation::initialize() {
   weight_ = (m.end_mass + m.ropeMass()) * m.scene.gravity;
   end_strain_ = m.end_mass * m.scene.gravity / m.rope.axialStiffnessAt(m.scene.rope.length);
   full_order_ = false;
-  steps_ = full_order_steps_ = 0;
+  steps_ = full_order_steps_ = taken_back_ = 0;
+  keepHandBack();
   clear_of_ground_ = true;
   loaded_on_ground_ = false;
   std::fill(hand_overs_.begin(), hand_overs_.end(), 0);
@@ -29,17 +30,61 @@ HandOverSimulation::Start HandOverSimulation::startReduced(const CoupledState&) 
 }
 
 void HandOverSimulation::handOver(const CoupledState& full, Cause c, bool quiet) {
+  keepHandBack();
   if (restartsAtHandOver()) {
     full_.restartFrom(full);
   } else {
     full_.setState(full);
   }
-  full_since_ = full.t;
+  enterFullOrder(c, quiet);
+}
+
+void HandOverSimulation::enterFullOrder(Cause c, bool quiet) {
+  full_since_ = full_.time();
   dwell_ = quiet ? std::min(settings_.quiet_hand_back_dwell, settings_.hand_back_dwell)
                  : settings_.hand_back_dwell;
   hand_back_interval_ = hand_back_countdown_ = settings_.hand_back_steps;
   full_order_ = true;
   ++hand_overs_[static_cast<int>(c)];
+}
+
+void HandOverSimulation::handOverOrTakeBack(Cause c) {
+  if (speculating_) return takeBack(c);
+  handOver(handOverState(), c);
+}
+
+void HandOverSimulation::takeBack(Cause c) {
+  // Full order from the checkpoint over the speculative steps, each input given where it was
+  // given (before the step after `step` speculative steps), to the reduced run's present.
+  full_.continueFrom(*checkpoint_);
+  std::size_t next = 0;
+  for (long k = 0; k < speculative_steps_; ++k) {
+    for (; next < inputs_.size() && inputs_[next].step == k; ++next) {
+      if (inputs_[next].command) full_.setCommand(*inputs_[next].command);
+      if (inputs_[next].wind) full_.setMeasuredWind(*inputs_[next].wind);
+    }
+    full_.step();
+    ++full_order_steps_;
+  }
+  speculating_ = false;
+  inputs_.clear();
+  ++taken_back_;
+  enterFullOrder(c, false);
+}
+
+void HandOverSimulation::keepHandBack() {
+  speculating_ = false;
+  inputs_.clear();
+}
+
+void HandOverSimulation::setCommand(const CommandEntry& command) {
+  if (speculating_) inputs_.push_back({speculative_steps_, command, std::nullopt});
+  full_.setCommand(command);
+}
+
+void HandOverSimulation::setFullModelWind(const Eigen::Vector3d& velocity) {
+  if (speculating_) inputs_.push_back({speculative_steps_, std::nullopt, velocity});
+  full_.setMeasuredWind(velocity);
 }
 
 bool HandOverSimulation::tryHandBack() {
@@ -56,7 +101,17 @@ bool HandOverSimulation::tryHandBack() {
         f.q.segment<3>(full_.rope().positionIndex(full_.rope().nodes() - 1)));
     if (!carriesGround() && clearance < 2.0 * kGroundMargin) return false;
   }
+  // (Asked before tryTakeOver, which takes the state over.)
+  const bool speculative = handBackIsSpeculative(f);
   if (!tryTakeOver(f)) return false;
+  if (speculative) {
+    // The checkpoint: full order's state, drives and stepping at the hand-back (header).
+    if (!checkpoint_) checkpoint_ = std::make_unique<CraneSimulation>(full_.model());
+    checkpoint_->continueFrom(full_);
+    speculating_ = true;
+    speculative_steps_ = 0;
+    inputs_.clear();
+  }
   full_order_ = false;
   clear_of_ground_ = clearance >= kGroundMargin;
   loaded_on_ground_ = false;
@@ -81,20 +136,25 @@ void HandOverSimulation::step() {
     }
     return;
   }
-  full_.advanceDrives(reducedTime(), full_.model().scene.time_step, reducedSupport());
+  // A speculation survived its window: the hand-back is kept.
+  const double h = full_.model().scene.time_step;
+  if (speculating_ && speculative_steps_ * h >= settings_.speculation_window - 0.5 * h) {
+    keepHandBack();
+  }
+  full_.advanceDrives(reducedTime(), h, reducedSupport());
   ++steps_;
+  if (speculating_) ++speculative_steps_;
   const Verdict verdict = reducedStep();
   if (verdict != Verdict::carried) {
+    const Cause c = verdict == Verdict::failed ? Cause::failure : Cause::fast_hoist;
+    if (speculating_) return takeBack(c);  // (the replay takes this step too)
     // The reduced state is at the step's start: the full model takes the step.
-    handOver(handOverState(), verdict == Verdict::failed ? Cause::failure : Cause::fast_hoist);
+    handOver(handOverState(), c);
     full_.stepAfterDrives();
     ++full_order_steps_;
     return;
   }
-  if (slackened()) {
-    handOver(handOverState(), Cause::slack);
-    return;
-  }
+  if (slackened()) return handOverOrTakeBack(Cause::slack);
   if (full_.ground()) {
     // A touchdown from the air goes to full order (a landing load sliding or tipping its rope
     // rings in shapes the basis does not hold); a rope that carries the ground stays reduced on
@@ -104,11 +164,10 @@ void HandOverSimulation::step() {
     const bool touchdown = !clear && (clear_of_ground_ || !carriesGround());
     clear_of_ground_ = clear;
     if (touchdown || (carriesGround() && restingRopeUnloaded(end))) {
-      handOver(handOverState(), Cause::ground);
-      return;
+      return handOverOrTakeBack(Cause::ground);
     }
   }
-  if (errorTooLarge(steps_)) handOver(handOverState(), Cause::indicator);
+  if (errorTooLarge(steps_)) handOverOrTakeBack(Cause::indicator);
 }
 
 bool HandOverSimulation::restingRopeUnloaded(const Eigen::Vector3d& end) {
@@ -168,6 +227,7 @@ RunStatistics HandOverSimulation::statistics() const {
   r.halved_steps = reducedHalvedSteps() + f.halved_steps;
   r.energy_consistent_steps = reducedEnergyConsistentSteps() + f.energy_consistent_steps;
   r.hand_overs = handOvers();
+  r.hand_backs_taken_back = taken_back_;
   r.full_order_steps = full_order_steps_;
   r.integrating_full_order = full_order_;
   return r;
@@ -190,6 +250,9 @@ void HandOverSimulation::continueHandOverFrom(const HandOverSimulation& o) {
   hand_back_countdown_ = o.hand_back_countdown_;
   clear_of_ground_ = o.clear_of_ground_;
   loaded_on_ground_ = o.loaded_on_ground_;
+  taken_back_ = o.taken_back_;
+  // (The other run's checkpoint is its own: this run keeps the state it continues.)
+  keepHandBack();
 }
 
 }  // namespace crane_twin

@@ -157,6 +157,7 @@ void InvariantReducedSimulation::continueFrom(const Simulation& other) {
 
 void InvariantReducedSimulation::setMotion(const CoupledState& m) {
   if (full_order_) return full_.setMotion(m);
+  keepHandBack();  // the measured motion replaces the state a take-back would restore
   syncFullRope();
   solver_->refreshLength();  // the rope's length as the full model rounds it (tryHandBack)
   CoupledState f = solver_->expand(state_);
@@ -226,10 +227,6 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // The full model may have hoisted since the hand-over (or a new run reset the length): the
   // solver to the rope's length first.
   solver_->refreshLength();
-  // Not into an axial ringing that will bring the rope under kIndicatorStrainFraction of the end
-  // weight: at those low points the error indicator does not look (errorTooLarge), and the
-  // transverse waves they pump leave the basis (header: the forecast's floor).
-  if (releaseTensionLowPoint(f) < kIndicatorStrainFraction * endWeight()) return false;
   // Not while a rigging's payload rests with its rigging slack: the hook block then hangs alone
   // on the rope and bobs on it (the jib's rebound), snatching the rigging, on a rope whose basis
   // is shaped for the hook and payload lumped; carried so, a 4 t set-down on a 4 m rigging
@@ -267,6 +264,13 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   return true;
 }
 
+bool InvariantReducedSimulation::handBackIsSpeculative(const CoupledState& f) const {
+  // Into an axial ringing that will bring the rope under kIndicatorStrainFraction of the end
+  // weight: at those low points the error indicator does not look (errorTooLarge), and the
+  // transverse waves they pump may leave the basis (header: the forecast's floor).
+  return releaseTensionLowPoint(f) < kIndicatorStrainFraction * endWeight();
+}
+
 HandOverSimulation::Verdict InvariantReducedSimulation::reducedStep() {
   // Hoisting keeps y (header); the full rope follows only when it is needed (syncFullRope).
   const double to = full_.hoistTargetLength();
@@ -302,7 +306,7 @@ bool InvariantReducedSimulation::errorTooLarge(long steps) {
   syncFullRope();
   const double e = errorIndicator(solver_->expand(state_));
   max_indicator_ = std::max(max_indicator_, e);
-  return !(e < kIndicatorTolerance);
+  return !(e < (speculating() ? kSpeculationTolerance : kIndicatorTolerance));
 }
 
 void InvariantReducedSimulation::syncFullRope() {

@@ -18,13 +18,22 @@
 //    rope taut (top tension above taut_tension_fraction of the weight, every node's strain above
 //    taut_strain_fraction of the end mass's static strain less the slack band kSlackBand, the
 //    payload at least 2 kGroundMargin above the ground) and the reduced rope takes the state over
-//    (tryTakeOver: its own test that the projection loses nothing).
+//    (tryTakeOver: its own test that the projection loses nothing);
+//  - a hand-back the reduced rope takes but cannot vouch for (handBackIsSpeculative: a rope
+//    that rings towards slack) is speculative: the full-order state at the hand-back is kept as
+//    a checkpoint, with the operator's commands and measured winds from then on. Where the run
+//    would hand over within speculation_window of it (any cause), the hand-back is taken back
+//    instead: full order re-integrates from the checkpoint to the present, replaying those
+//    inputs at their steps, and continues the full-order run as if it had never handed back
+//    (the rows already written stay the reduced rope's). Past the window, or at a measured
+//    motion (setMotion), the hand-back is kept and the checkpoint dropped.
 // A start the reduced rope does not take over runs at full order from t = 0. The hanging weight
 // W = (m_end + mu L) g and the end mass's static strain m_end g / EA are the scene's.
 #pragma once
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "crane_twin/simulation/crane_simulation.hpp"
@@ -59,6 +68,10 @@ struct HandOverSettings {
   double quiet_hand_back_dwell = 0.1;
   int hand_back_steps = 20;          ///< full-order steps between trials at first
   int max_hand_back_interval = 640;  ///< the interval doubles after each refused trial up to this
+  /// Simulated time a speculative hand-back may still be taken back [s]: the longest stretch
+  /// full order re-integrates at once (a node's burst), and what a speculation must survive to
+  /// be kept.
+  double speculation_window = 10.0;
 };
 
 class HandOverSimulation : public Simulation {
@@ -77,7 +90,7 @@ class HandOverSimulation : public Simulation {
 
   void initialize() override;
   void step() override;
-  void setCommand(const CommandEntry& command) override { full_.setCommand(command); }
+  void setCommand(const CommandEntry& command) override;
   double time() const override { return full_order_ ? full_.time() : reducedTime(); }
   SeriesValues series() const override;
   double topTension() const override {
@@ -109,6 +122,10 @@ class HandOverSimulation : public Simulation {
   long handOvers() const;
   long fullOrderSteps() const { return full_order_steps_; }
   bool integratingFullOrder() const { return full_order_; }
+  /// Speculative hand-backs taken back so far (re-integrated at full order), and whether the
+  /// run is in one now.
+  long handBacksTakenBack() const { return taken_back_; }
+  bool speculating() const { return speculating_; }
 
   /// The rope length being integrated [m] (the full rope's while at full order).
   double ropeLength() const { return full_order_ ? full_.ropeLength() : reducedLength(); }
@@ -146,6 +163,9 @@ class HandOverSimulation : public Simulation {
   virtual double reducedMinStrain() const = 0;
   virtual long reducedHalvedSteps() const { return 0; }
   virtual long reducedEnergyConsistentSteps() const { return 0; }
+  /// A hand-back tryTakeOver accepted that the reduced rope cannot vouch for beyond the present
+  /// (default: none): it is speculative (header).
+  virtual bool handBackIsSpeculative(const CoupledState& /*full*/) const { return false; }
   /// Checked after every carried reduced step: the rope is slack and full order takes over.
   /// Default: the top tension under slack_tension_fraction of W or, every strain_check_steps
   /// steps, a point's strain under slack_strain_fraction of the end mass's static strain.
@@ -177,8 +197,13 @@ class HandOverSimulation : public Simulation {
   /// where the error indicator is blind. False without a ground; a landed start's rope, never
   /// loaded, is not.
   bool restingRopeUnloaded(const Eigen::Vector3d& end);
-  /// Continue the mechanism's state (clock, counters, schedule) of another run of this kind.
+  /// Continue the mechanism's state (clock, counters, schedule) of another run of this kind
+  /// (a speculation of the other run is kept: its checkpoint stays with it).
   void continueHandOverFrom(const HandOverSimulation& other);
+  /// A measured wind for the full model, kept for a replay while speculating.
+  void setFullModelWind(const Eigen::Vector3d& velocity);
+  /// Keep the speculative hand-back (if any): drop its checkpoint and inputs.
+  void keepHandBack();
 
   CraneSimulation full_;
   HandOverSettings settings_;
@@ -196,6 +221,25 @@ class HandOverSimulation : public Simulation {
   bool loaded_on_ground_ =
       false;  ///< the resting load's rope has been loaded (restingRopeUnloaded)
   int hand_back_interval_ = 0, hand_back_countdown_ = 0;
+
+  // The hand-over for cause c at the end of a reduced step (its state `handOverState()`), or
+  // the speculative hand-back taken back where one is open.
+  void handOverOrTakeBack(Cause c);
+  // The full-order bookkeeping of a hand-over at the present (schedule, counters).
+  void enterFullOrder(Cause c, bool quiet);
+  // Re-integrate full order from the checkpoint over the speculative steps (header).
+  void takeBack(Cause c);
+  /// An operator's command or a measured wind given after `step` speculative steps.
+  struct LoggedInput {
+    long step = 0;
+    std::optional<CommandEntry> command;
+    std::optional<Eigen::Vector3d> wind;
+  };
+  std::unique_ptr<CraneSimulation> checkpoint_;  ///< full order at the speculative hand-back
+  bool speculating_ = false;
+  long speculative_steps_ = 0;  ///< reduced steps since the checkpoint
+  std::vector<LoggedInput> inputs_;
+  long taken_back_ = 0;
 };
 
 }  // namespace crane_twin

@@ -75,6 +75,9 @@ struct RunStatistics {
   /// Reduced rope: hand-overs to full order so far, the steps integrated at full order, and
   /// whether the current step runs at full order.
   long hand_overs = 0;
+  /// Speculative hand-backs taken back and re-integrated at full order (docs/model.md
+  /// "Hand-over to full order").
+  long hand_backs_taken_back = 0;
   long full_order_steps = 0;
   bool integrating_full_order = false;
 };
