@@ -6,7 +6,7 @@
 # symmetric law's wall s, their ratio, the reduced run's wall s (hand-overs, full-order steps,
 # energy rise), its payload / rope RMS error against the tension-only full run (crane_sim
 # compare), and the symmetric run's payload distance from the tension-only one.
-#   scripts/slack_and_snatch.sh            (about 6 minutes on the 2-core machine)
+#   scripts/slack_and_snatch.sh            (about 2 minutes on the 2-core machine)
 # CRANE_SIM overrides the binary (default build/core/crane_sim).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -62,6 +62,8 @@ row '60 deg release, 3.6 t on 60 m from an anchor, 120 el, 1 ms, 20 s' rope_pend
 row '`hard_swing_60deg` (T8036, 60 deg release, 20 s)' hard_swing_60deg
 row '40 deg release on the T8036 (`t8036_combination1`, 20 s)' t8036_combination1 \
   --set initial.swing_deg=40 --set duration=20
+row '12.5 t released stress-free from a rigid anchor (`hard_stress_free_heavy`, rigid structure, 20 s)' \
+  hard_stress_free_heavy --set structure.model=rigid --set duration=20
 row '`hard_slack_throw` (combination 2, 12.5 t thrown up at 3 m/s, 10 s)' hard_slack_throw
 row 'falling rope (60 m, no payload, released horizontal, 120 el, 0.5 ms, 5 s)' \
   hard_falling_rope --set rope.elements=120 --set time_step=0.0005 --set duration=5
