@@ -164,6 +164,10 @@ void SupportedRopeSimulation::continueDrivesFrom(const SupportedRopeSimulation& 
   wind_ = o.wind_;
   wind_3s_ = o.wind_3s_;
   structure_wind_stale_ = true;
+  if (!wind_) {  // no wind there: none of this run's own loads stay (resetDrivesAndPose)
+    setRopeWind(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+    support_->setExternalLoad(Eigen::VectorXd());
+  }
   updateWind(o.state_.t, o.state_.z, false);
 }
 
