@@ -66,8 +66,7 @@ void HandOverSimulation::takeBack(Cause c) {
     full_.step();
     ++full_order_steps_;
   }
-  speculating_ = false;
-  inputs_.clear();
+  keepHandBack();  // (the checkpoint and inputs are spent)
   ++taken_back_;
   enterFullOrder(c, false);
 }
@@ -108,9 +107,8 @@ bool HandOverSimulation::tryHandBack() {
     // The checkpoint: full order's state, drives and stepping at the hand-back (header).
     if (!checkpoint_) checkpoint_ = std::make_unique<CraneSimulation>(full_.model());
     checkpoint_->continueFrom(full_);
-    speculating_ = true;
+    speculating_ = true;  // (inputs_ is empty: every speculation's end clears it)
     speculative_steps_ = 0;
-    inputs_.clear();
   }
   full_order_ = false;
   clear_of_ground_ = clearance >= kGroundMargin;

@@ -147,12 +147,16 @@ void SupportedRopeSimulation::resetDrivesAndPose() {
     wind_.emplace(*sc.wind, windJibHeight(model_));
   } else {
     wind_.reset();
-    setRopeWind(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
-    support_->setExternalLoad(Eigen::VectorXd());
+    clearWindLoads();
   }
   structure_wind_stale_ = true;
   wind_3s_ = 0.0;
   updateWind(0.0, Eigen::VectorXd());
+}
+
+void SupportedRopeSimulation::clearWindLoads() {
+  setRopeWind(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+  support_->setExternalLoad(Eigen::VectorXd());
 }
 
 void SupportedRopeSimulation::continueDrivesFrom(const SupportedRopeSimulation& o) {
@@ -164,10 +168,7 @@ void SupportedRopeSimulation::continueDrivesFrom(const SupportedRopeSimulation& 
   wind_ = o.wind_;
   wind_3s_ = o.wind_3s_;
   structure_wind_stale_ = true;
-  if (!wind_) {  // no wind there: none of this run's own loads stay (resetDrivesAndPose)
-    setRopeWind(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
-    support_->setExternalLoad(Eigen::VectorXd());
-  }
+  if (!wind_) clearWindLoads();  // no wind there: none of this run's own loads stay
   updateWind(o.state_.t, o.state_.z, false);
 }
 

@@ -138,6 +138,8 @@ class SupportedRopeSimulation : public Simulation, public MeasuredWindInput {
   /// with the support at coordinates z (empty: at rest), and (record) the 3 s mean at the jib's
   /// height. No effect without wind.
   void updateWind(double t, const Eigen::VectorXd& z, bool record = true);
+  /// No wind loads on the rope, the payload or the structure (a run without wind).
+  void clearWindLoads();
   /// The support at pose (theta, radius), held there through the next step (a reset or a
   /// continued run: RopeSupport::setPoseStep with equal ends).
   void holdPose(double theta, double radius);
