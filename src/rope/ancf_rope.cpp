@@ -207,6 +207,25 @@ double AncfRope::elasticEnergy(const Eigen::VectorXd& q) const {
   return U;
 }
 
+Eigen::VectorXd AncfRope::axialDampingForce(double c, const Eigen::VectorXd& q,
+                                            const Eigen::VectorXd& v) const {
+  Eigen::VectorXd Q = Eigen::VectorXd::Zero(dofs());
+  if (c == 0.0) return Q;
+  Vector12 Qe;
+  for (int k = 0; k < elements_; ++k) {
+    ancfAxialDampingForce(element_, c, q.segment<12>(6 * k), v.segment<12>(6 * k), Qe);
+    Q.segment<12>(6 * k) += Qe;
+  }
+  if (hasRigging()) {
+    const std::array<int, 6> r = riggingDofs();
+    Vector6 qb, vb, Qb;
+    for (int i = 0; i < 6; ++i) qb(i) = q(r[i]), vb(i) = v(r[i]);
+    rigging_->dampingForce(c, qb, vb, Qb);
+    for (int i = 0; i < 6; ++i) Q(r[i]) += Qb(i);
+  }
+  return Q;
+}
+
 double AncfRope::slackSwitchWorkError(const Eigen::VectorXd& q0, const Eigen::VectorXd& q1) const {
   if (!element_.tension_only) return 0.0;
   double err = 0.0;

@@ -202,9 +202,10 @@ double InvariantReducedSimulation::errorIndicator(const CoupledState& f) const {
   const SparseMatrix& M = rope.massMatrix();
   Eigen::VectorXd Q;
   const SparseMatrix K = rope.tangentStiffness(f.q, &Q);
-  // r = F_g - M q'' - Q (+ the ground's force on the end node; the top node's rows carry lambda
-  // and are held).
-  Eigen::VectorXd r = rope.gravityForce() - M * f.qdd - Q;
+  // r = F_g - M q'' - Q - Q_d (Q_d the rope damping's force at q, q'; + the ground's force on the
+  // end node; the top node's rows carry lambda and are held).
+  Eigen::VectorXd r = rope.gravityForce() - M * f.qdd - Q -
+                      rope.axialDampingForce(full_.model().scene.rope.damping, f.q, f.v);
   if (full_.ground()) {
     const int e = rope.positionIndex(rope.nodes() - 1);
     r.segment<3>(e) += full_.ground()->force(f.q.segment<3>(e), f.v.segment<3>(e)).f;

@@ -116,6 +116,11 @@ class AncfRope {
   /// Assembled tangent stiffness K(q) = dQ/dq (n x n); Q(q) into *force when given.
   SparseMatrix tangentStiffness(const Eigen::VectorXd& q, Eigen::VectorXd* force = nullptr) const;
   double elasticEnergy(const Eigen::VectorXd& q) const;
+  /// The axial damping force of `rope.damping` = c [s] at (q, v) (n values): ancfAxialDampingForce
+  /// over the hoist rope's elements plus the rigging bar's (PendulumRope::dampingForce), the
+  /// force full order's equations add to Q(q) (zero for c = 0).
+  Eigen::VectorXd axialDampingForce(double c, const Eigen::VectorXd& q,
+                                    const Eigen::VectorXd& v) const;
   /// Sum of ancfSlackSwitchWorkError over the hoist rope's elements for a step q0 -> q1, plus the
   /// rigging bar's |(T0 + T1) / 2 (l1 - l0) - (U1 - U0)| where it is not taut at both ends [J]
   /// (0 unless tension_only; exactly 0 where the rope is taut at both ends).
