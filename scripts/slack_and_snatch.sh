@@ -7,6 +7,9 @@
 # energy rise), its payload / rope RMS error against the tension-only full run (crane_sim
 # compare), and the symmetric run's payload distance from the tension-only one.
 #   scripts/slack_and_snatch.sh            (about 2 minutes on the 2-core machine)
+#   REFINE=8 scripts/slack_and_snatch.sh   (one more column, about 8 minutes more: the tension-only
+#                                           full run at an eighth of the scene's step, its payload /
+#                                           rope RMS distance from the run at the scene's step)
 # CRANE_SIM overrides the binary (default build/core/crane_sim).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -28,6 +31,21 @@ taken_back() {  # hand-overs, with the speculative hand-backs taken back where a
   awk -v h="$(summary "$1" hand_overs)" -v k="$(summary "$1" taken_back)" \
     'BEGIN {printf "%s%s", h, (k > 0 ? " (" k " taken back)" : "")}'
 }
+REFINE="${REFINE:-}"
+if [ -n "$REFINE" ] && ! [[ "$REFINE" =~ ^[1-9][0-9]*$ && "$REFINE" -gt 1 ]]; then
+  echo "REFINE must be an integer above 1 (the step's divisor), got '$REFINE'" >&2
+  exit 2
+fi
+step_of() {  # scene [--set ...] -> the run's time step: its override, else the scene file's
+  local scene="$1" h
+  shift
+  h=$(sed -n 's/^time_step: *\([0-9.eE+-]*\).*/\1/p' "$C/$scene.yaml")
+  while [ $# -gt 0 ]; do
+    [[ "$1" == --set && "${2:-}" == time_step=* ]] && h="${2#time_step=}"
+    shift
+  done
+  echo "$h"
+}
 compare() {  # a b -> "payload / rope RMS"
   "$SIM" compare "$OUT/$1.csv" "$OUT/$2.csv" --nodes-a "$OUT/$1_n.csv" --nodes-b "$OUT/$2_n.csv" |
     awk -F, '/^payload_error_max/ {p = $2} /^rope_rms_max/ {r = $2} END {printf "%.2g / %.2g", p, r}'
@@ -42,19 +60,34 @@ row() {  # label scene [--set ...]
     "$SIM" run "$C/$scene.yaml" "$@" "${sets[@]}" --out "$OUT/$v.csv" --nodes "$OUT/${v}_n.csv" \
       --quiet > "$OUT/$v.log" 2>&1 || echo "exit=$?" >> "$OUT/$v.log"
   done
+  local refined=""
+  if [ -n "$REFINE" ]; then
+    local h
+    h=$(awk -v h="$(step_of "$scene" "$@")" -v n="$REFINE" 'BEGIN {printf "%.10g", h / n}')
+    "$SIM" run "$C/$scene.yaml" "$@" --set rope.model=full --set time_step="$h" \
+      --out "$OUT/refined.csv" --nodes "$OUT/refined_n.csv" --quiet > "$OUT/refined.log" 2>&1 ||
+      echo "exit=$?" >> "$OUT/refined.log"
+    refined=" $(compare full refined) |"
+  fi
   local wf ws
   wf=$(summary full wall_s)
   ws=$(summary symmetric wall_s)
-  printf '| %s | %s (%s, %s, %s) | %s | %s | %s (%s, %s, %s) | %s | %s |\n' "$label" "$wf" \
+  printf '| %s | %s (%s, %s, %s) | %s | %s | %s (%s, %s, %s) | %s | %s |%s\n' "$label" "$wf" \
     "$(summary full energy_consistent_steps)" "$(summary full halved_steps)" "$(rise full)" "$ws" \
     "$(awk -v a="$wf" -v b="$ws" 'BEGIN{if (b > 0) printf "%.2f", a / b}')" \
     "$(summary reduced wall_s)" "$(taken_back reduced)" \
     "$(summary reduced full_order_steps)" "$(rise reduced)" "$(compare reduced full)" \
-    "$(compare symmetric full | cut -d' ' -f1)"
+    "$(compare symmetric full | cut -d' ' -f1)" "$refined"
 }
 
-echo "| scene | tension-only full: wall s (e-c steps, halved, rise) | symmetric full wall s | ratio | default reduced: wall s (hand-overs, full-order steps, rise) | reduced payload / rope RMS error m | symmetric vs tension-only payload m |"
-echo "| --- | --- | --- | --- | --- | --- | --- |"
+head="| scene | tension-only full: wall s (e-c steps, halved, rise) | symmetric full wall s | ratio | default reduced: wall s (hand-overs, full-order steps, rise) | reduced payload / rope RMS error m | symmetric vs tension-only payload m |"
+rule="| --- | --- | --- | --- | --- | --- | --- |"
+if [ -n "$REFINE" ]; then
+  head+=" tension-only full at 1/$REFINE of the step vs full: payload / rope RMS m |"
+  rule+=" --- |"
+fi
+echo "$head"
+echo "$rule"
 row '`rope_pendulum_chrono` (stress-free release, 60 m, 3.6 t, 120 el, 1 ms, 20 s)' \
   rope_pendulum_chrono
 row '60 deg release, 3.6 t on 60 m from an anchor, 120 el, 1 ms, 20 s' rope_pendulum_chrono \
