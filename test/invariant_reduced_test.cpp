@@ -591,30 +591,33 @@ TEST(InvariantReduced, ReleaseTensionLowPointMatchesTheMassSpringClosedForm) {
 }
 
 // A stress-free release (12.5 t from its unstretched rope, the rope stretching to twice its
-// static tension in the first bounce) starts at full order: the basis's shapes are of the loaded
-// rope. It forecasts no slack, so the hand-over is quiet: the hand-back is tried from
-// quiet_hand_back_dwell (0.1 s) on, and the run comes back as soon as the projection and the
-// indicator pass (0.14 s at 2 ms, against the 1.04 s the one-second dwell held it), within 1 cm
-// of full order. A release that will slacken (50 deg, the test above) keeps the one-second dwell.
-TEST(InvariantReduced, StressFreeStartComesBackOnceItsRopeIsStretched) {
+// static tension in the first bounce): a straight rope at the slack edge, at rest, which the basis
+// holds exactly (the chord a_0 + xi a_1). The hand-back's energy test and indicator weigh nothing
+// on a rope that carries no load yet (kRestEnergyFraction), so the run starts reduced, its
+// hand-back speculative (the forecast low point is zero), and stays within 1 cm of full order.
+// Before, the strain test refused the start by round-off (|r_x| - 1 a few ulps under the slack
+// edge) and the run came back only after 0.14 s at full order (70 steps at 2 ms).
+TEST(InvariantReduced, AStressFreeStartRunsReducedFromItsFirstStep) {
   double payload, rope;
   long hand_overs, start_hand_overs = -1, full_order_steps = -1;
-  bool integrating_full_order = true;
+  bool integrating_full_order = true, speculating = false;
   reducedAgainstFull("hard_stress_free_heavy.yaml",
                      {"rope.elements=30", "structure.modes=20", "time_step=0.002"}, 750, 25,
                      payload, rope, hand_overs, [&](const InvariantReducedSimulation& red) {
                        start_hand_overs = red.startHandOvers();
                        full_order_steps = red.fullOrderSteps();
                        integrating_full_order = red.integratingFullOrder();
+                       speculating = red.speculating();
                      });
   std::printf(
       "stress-free release: %ld hand-over(s), %ld full-order steps, payload %.3g m, "
       "rope RMS %.3g m\n",
       hand_overs, full_order_steps, payload, rope);
-  EXPECT_EQ(start_hand_overs, 1);
-  EXPECT_EQ(hand_overs, 1);
+  EXPECT_EQ(start_hand_overs, 0);
+  EXPECT_EQ(hand_overs, 0);
+  EXPECT_EQ(full_order_steps, 0);
   EXPECT_FALSE(integrating_full_order);
-  EXPECT_LT(full_order_steps * 0.002, 0.3);
+  EXPECT_TRUE(speculating);  // (1.5 s of its 10 s window)
   EXPECT_LT(payload, 0.01);
   EXPECT_LT(rope, 0.01);
 }

@@ -182,10 +182,11 @@ TEST(PayloadForecast, CancelStopsARunningForecastAndPrepareClearsIt) {
 }
 
 TEST(PayloadForecast, ForecastsATwinThatCameBackFromAStartAtFullOrder) {
-  // A stress-free start the reduced rope does not carry: the twin and the forecaster's copy both
-  // begin at full order. Once the twin has handed back (reduced), the copy, which never
-  // integrated reduced, continues it, and at the twin's step its forecast is the twin's future.
-  const CraneModel m = live({"initial.mode=stress_free", "initial.swing_deg=3"});
+  // A start the reduced rope does not carry (a payload on a rigging given its own velocity: its
+  // bar loads or unloads the rope at once): the twin and the forecaster's copy both begin at full
+  // order. Once the twin has handed back (reduced), the copy, which never integrated reduced,
+  // continues it, and at the twin's step its forecast is the twin's future.
+  const CraneModel m = live({"hook.rigging_length=2", "initial.payload_velocity=[0.3,0,0]"});
   std::unique_ptr<Simulation> twin = makeSimulation(m);
   twin->initialize();
   ASSERT_TRUE(twin->statistics().integrating_full_order);

@@ -90,8 +90,11 @@ bool HandOverSimulation::tryHandBack() {
   const CoupledState& f = full_.state();
   if (weight_ > 0.0) {
     if (full_.solver().topTension(f) < settings_.taut_tension_fraction * weight_) return false;
-    // (less the tension-only law's slack band: a stress-free rope's strain is 0 to round-off)
-    if (AncfRope::minNodalStrain(f.q) < settings_.taut_strain_fraction * end_strain_ - kSlackBand)
+    // (less the tension-only law's slack band and a strain's round-off: a stress-free rope sits
+    // at the band's edge, AncfRope::straight, and |r_x| - 1 there reads -kSlackBand to a few
+    // ulps either side)
+    if (AncfRope::minNodalStrain(f.q) <
+        settings_.taut_strain_fraction * end_strain_ - kSlackBand - kStrainRoundOff)
       return false;
   }
   double clearance = 0.0;

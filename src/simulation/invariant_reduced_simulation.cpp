@@ -109,6 +109,12 @@ HandOverSimulation::Start InvariantReducedSimulation::startReduced(const Coupled
   return tryHandBack() ? Start::reduced : Start::outside_basis;
 }
 
+double InvariantReducedSimulation::restEnergyScale() const {
+  // The end mass and the rope lowered by the rope's length [J].
+  const CraneModel& m = full_.model();
+  return (m.end_mass + m.ropeMass()) * full_.rope().gravity().norm() * ropeLength();
+}
+
 double InvariantReducedSimulation::endWeight() const {
   return full_.model().end_mass * full_.rope().gravity().norm();
 }
@@ -256,11 +262,18 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   const CoupledState e = solver_->expand(r);
   const bool resting = withinGroundMargin(payload);
   const double Tf = rope.kineticEnergyRelativeToTop(f.v), Uf = rope.elasticEnergy(f.q);
+  // A rope at rest that carries no strain, which the basis holds exactly (a stress-free start:
+  // a straight chord at the slack edge, header): nothing the energy test or the indicator could
+  // weigh (both are relative to a load the rope does not yet carry; the indicator's static
+  // correction runs through the axial stiffness a rope at zero tension lacks).
+  const bool unloaded_at_rest =
+      pe <= kStartShapeTolerance && Tf + Uf <= kRestEnergyFraction * restEnergyScale();
   const double dE =
       std::abs(Tf - rope.kineticEnergyRelativeToTop(e.v)) + std::abs(Uf - rope.elasticEnergy(e.q));
-  if (!resting && !(dE < kHandBackEnergy * (Tf + Uf + swingEnergy(f)))) return false;
-  const double ind = errorIndicator(e);
-  if (!(ind < kHandBackTolerance)) return false;
+  if (!resting && !unloaded_at_rest && !(dE < kHandBackEnergy * (Tf + Uf + swingEnergy(f)))) {
+    return false;
+  }
+  if (!unloaded_at_rest && !(errorIndicator(e) < kHandBackTolerance)) return false;
   state_ = r;
   return true;
 }

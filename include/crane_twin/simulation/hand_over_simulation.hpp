@@ -56,6 +56,9 @@ constexpr double kRopeLoadedFraction = 0.2;
 /// (docs/model.md "Hand-over to full order"); a plumb one (a jib's rebound over a set-down load,
 /// 0.16 m off under 61 m) stays reduced.
 constexpr double kUnloadedOffsetFraction = 0.01;
+/// Round-off of a nodal strain |r_x| - 1 [-] (a few ulps of |r_x| near 1): the hand-back's strain
+/// test allows it below the tension-only law's slack edge, where a stress-free rope sits.
+constexpr double kStrainRoundOff = 1e-12;
 
 struct HandOverSettings {
   double slack_tension_fraction = 0.1, taut_tension_fraction = 0.2;
