@@ -622,6 +622,20 @@ TEST(InvariantReduced, AStressFreeStartRunsReducedFromItsFirstStep) {
   EXPECT_LT(rope, 0.01);
 }
 
+// A rope without a load released from rest (hard_falling_rope): at rest and unstretched as a
+// stress-free start is, but its forecast has no low point to guard (no end mass), so its start is
+// not handed back unguarded: it runs at full order from its first step, as it falls slack.
+TEST(InvariantReduced, AFallingRopeWithoutALoadStartsAtFullOrder) {
+  InvariantReducedSimulation red(withRope("hard_falling_rope.yaml",
+                                          {"rope.elements=20", "duration=0.5", "time_step=0.001"},
+                                          "reduced"));
+  red.initialize();
+  EXPECT_EQ(red.startHandOvers(), 1);
+  EXPECT_FALSE(red.speculating());
+  for (int k = 0; k < 500; ++k) red.step();
+  EXPECT_EQ(red.fullOrderSteps(), 500);
+}
+
 // A reduced run and a full-order run of one scene stepped side by side: `command` (if any) given
 // to both after `command_step` steps. Records, for the reduced run, whether a speculative
 // hand-back was open when the command came, the first step after a take-back, the largest

@@ -265,9 +265,12 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // A rope at rest that carries no strain, which the basis holds exactly (a stress-free start:
   // a straight chord at the slack edge, header): nothing the energy test or the indicator could
   // weigh (both are relative to a load the rope does not yet carry; the indicator's static
-  // correction runs through the axial stiffness a rope at zero tension lacks).
-  const bool unloaded_at_rest =
-      pe <= kStartShapeTolerance && Tf + Uf <= kRestEnergyFraction * restEnergyScale();
+  // correction runs through the axial stiffness a rope at zero tension lacks). Only where the
+  // hand-back is speculative, so that a take-back guards it: a rope without an end mass falling
+  // from rest (hard_falling_rope) forecasts no low point and would slacken unguarded.
+  const bool unloaded_at_rest = pe <= kStartShapeTolerance &&
+                                Tf + Uf <= kRestEnergyFraction * restEnergyScale() &&
+                                handBackIsSpeculative(f);
   const double dE =
       std::abs(Tf - rope.kineticEnergyRelativeToTop(e.v)) + std::abs(Uf - rope.elasticEnergy(e.q));
   if (!resting && !unloaded_at_rest && !(dE < kHandBackEnergy * (Tf + Uf + swingEnergy(f)))) {
