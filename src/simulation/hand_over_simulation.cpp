@@ -19,8 +19,8 @@ void HandOverSimulation::initialize() {
   std::fill(hand_overs_.begin(), hand_overs_.end(), 0);
   const CoupledState f = full_.initialState();  // the rope at the scene's length
   full_.setState(f);
-  // A start the reduced rope cannot carry (a stress-free rope, a velocity given to the payload
-  // alone) runs at full order until the hand-back criteria hold.
+  // A start the reduced rope cannot carry (a velocity given to a rigging's payload alone, a
+  // release that will slacken) runs at full order until the hand-back criteria hold.
   const Start start = startReduced(f);
   if (start != Start::reduced) handOver(f, Cause::start, start == Start::outside_basis);
 }

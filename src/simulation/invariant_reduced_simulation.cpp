@@ -104,8 +104,9 @@ HandOverSimulation::Start InvariantReducedSimulation::startReduced(const Coupled
   // snatch's path off by 1 to 2 cm (docs/model.md "Hand-over to full order").
   // (Below zero by more than round-off: a stress-free rope's low point is its start's zero.)
   if (releaseTensionLowPoint(f) < -kLowPointRoundOff * endWeight()) return Start::ringing;
-  // Else a start the basis does not hold (a stress-free rope) comes back as soon as the
-  // hand-back's tests pass: a quiet hand-over.
+  // Else the start is handed back at once where the tests pass (a stress-free rope with a load:
+  // tryTakeOver, an unloaded rope at rest), and a start the basis does not hold comes back as
+  // soon as they do: a quiet hand-over.
   return tryHandBack() ? Start::reduced : Start::outside_basis;
 }
 

@@ -83,7 +83,7 @@ class HandOverSimulation : public Simulation {
   enum class Cause { start, slack, failure, indicator, fast_hoist, ground };
   /// How a run starts (startReduced): the reduced rope takes the scene's initial state; or the
   /// run starts at full order, for a start the basis does not hold that forecasts no slack (a
-  /// stress-free rope, a slanted landed rope: a quiet hand-over), or for one that rings (a
+  /// rope without a load released from rest: a quiet hand-over), or for one that rings (a
   /// release whose rebound will slacken the rope, a rigging's payload given its own velocity).
   /// Either is a Cause::start.
   enum class Start { reduced, outside_basis, ringing };

@@ -180,9 +180,10 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   /// Simulated time a hand-over stays at full order before the first hand-back trial [s]: the
   /// waves of a snatch or a slack episode ring for about a second on a 60 m rope.
   static constexpr double kHandBackDwell = 1.0;
-  /// The same after a quiet hand-over [s] (a stress-free start: no slack forecast; the
-  /// hand-back's tests decide). Measured (docs/model.md "Hand-over to full order"):
-  /// hard_stress_free_heavy came back after 139 full-order steps instead of 1019, errors
+  /// The same after a quiet hand-over [s] (a start the basis does not hold with no slack
+  /// forecast: a rope without a load released from rest; the hand-back's tests decide). Measured
+  /// when a stress-free start still began at full order (docs/model.md "Hand-over to full
+  /// order"): hard_stress_free_heavy came back after 139 full-order steps instead of 1019, errors
   /// unchanged; with 0.02 s after 139 too (seeded draws: 59 to 99 instead of 119 to 139). A
   /// touchdown is not quiet: the pick-and-place on a 4 m rigging came back 0.12 s after its
   /// touchdown, went back 3.3 s later as the jib's rebound slackened the rope, and ended 1.04 cm
