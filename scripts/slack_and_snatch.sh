@@ -36,16 +36,6 @@ if [ -n "$REFINE" ] && ! [[ "$REFINE" =~ ^[1-9][0-9]*$ && "$REFINE" -gt 1 ]]; th
   echo "REFINE must be an integer above 1 (the step's divisor), got '$REFINE'" >&2
   exit 2
 fi
-step_of() {  # scene [--set ...] -> the run's time step: its override, else the scene file's
-  local scene="$1" h
-  shift
-  h=$(sed -n 's/^time_step: *\([0-9.eE+-]*\).*/\1/p' "$C/$scene.yaml")
-  while [ $# -gt 0 ]; do
-    [[ "$1" == --set && "${2:-}" == time_step=* ]] && h="${2#time_step=}"
-    shift
-  done
-  echo "$h"
-}
 compare() {  # a b -> "payload / rope RMS"
   "$SIM" compare "$OUT/$1.csv" "$OUT/$2.csv" --nodes-a "$OUT/$1_n.csv" --nodes-b "$OUT/$2_n.csv" |
     awk -F, '/^payload_error_max/ {p = $2} /^rope_rms_max/ {r = $2} END {printf "%.2g / %.2g", p, r}'
@@ -63,7 +53,9 @@ row() {  # label scene [--set ...]
   local refined=""
   if [ -n "$REFINE" ]; then
     local h
-    h=$(awk -v h="$(step_of "$scene" "$@")" -v n="$REFINE" 'BEGIN {printf "%.10g", h / n}')
+    # (the full run's own step: its simulated time over its steps)
+    h=$(awk -v t="$(summary full sim_s)" -v k="$(summary full steps)" -v n="$REFINE" \
+      'BEGIN {printf "%.10g", t / k / n}')
     "$SIM" run "$C/$scene.yaml" "$@" --set rope.model=full --set time_step="$h" \
       --out "$OUT/refined.csv" --nodes "$OUT/refined_n.csv" --quiet > "$OUT/refined.log" 2>&1 ||
       echo "exit=$?" >> "$OUT/refined.log"

@@ -110,12 +110,6 @@ HandOverSimulation::Start InvariantReducedSimulation::startReduced(const Coupled
   return tryHandBack() ? Start::reduced : Start::outside_basis;
 }
 
-double InvariantReducedSimulation::restEnergyScale() const {
-  // The end mass and the rope lowered by the rope's length [J].
-  const CraneModel& m = full_.model();
-  return (m.end_mass + m.ropeMass()) * full_.rope().gravity().norm() * ropeLength();
-}
-
 double InvariantReducedSimulation::endWeight() const {
   return full_.model().end_mass * full_.rope().gravity().norm();
 }
@@ -270,7 +264,7 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // hand-back is speculative, so that a take-back guards it: a rope without an end mass falling
   // from rest (hard_falling_rope) forecasts no low point and would slacken unguarded.
   const bool unloaded_at_rest = pe <= kStartShapeTolerance &&
-                                Tf + Uf <= kRestEnergyFraction * restEnergyScale() &&
+                                Tf + Uf <= kRestEnergyFraction * weight_ * ropeLength() &&
                                 handBackIsSpeculative(f);
   const double dE =
       std::abs(Tf - rope.kineticEnergyRelativeToTop(e.v)) + std::abs(Uf - rope.elasticEnergy(e.q));

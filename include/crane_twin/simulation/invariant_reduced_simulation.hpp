@@ -157,12 +157,13 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   /// projection's and the indicator's 0.5 mm still hold.
   static constexpr double kHandBackEnergy = 1e-4;
   /// A rope whose kinetic energy relative to its top and strain energy together stay under this
-  /// fraction of restEnergyScale() counts as at rest and unloaded (round-off: a stress-free start
-  /// reads 1e-26 J of 3e6 J), whatever its swing: a hand-back onto a basis that holds it exactly
-  /// needs neither the energy test nor the indicator (tryTakeOver), and, its forecast low point
-  /// being zero, is speculative. Measured (docs/model.md "Hand-over to full order"): the
-  /// stress-free starts of hard_stress_free_heavy and of six seeded draws run reduced from their
-  /// first step, within the same errors as after the 119 full-order steps before.
+  /// fraction of the hanging weight times the rope's length counts as at rest and unloaded
+  /// (round-off: a stress-free start reads 1e-26 J of 3e6 J), whatever its swing: a hand-back onto
+  /// a basis that holds it exactly needs neither the energy test nor the indicator (tryTakeOver),
+  /// and, its forecast low point being zero, is speculative. Measured (docs/model.md "Hand-over to
+  /// full order"): the stress-free starts of hard_stress_free_heavy and of six seeded draws run
+  /// reduced from their first step, within the same errors as after the 119 full-order steps
+  /// before.
   static constexpr double kRestEnergyFraction = 1e-12;
   /// A landed start whose projection onto the scene's basis moves a node by more than this [m]
   /// adds its own shapes to the basis (InvariantRopeBasis::withShapesOf) and starts reduced on
@@ -225,8 +226,6 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   bool riggingSlackInTheAir() const;
   // The end mass's weight m_end |g| [N] (the scale of the hand-over's tension tests).
   double endWeight() const;
-  // (m_end + mu L) |g| L [J]: the energy scale of a rope at rest (kRestEnergyFraction).
-  double restEnergyScale() const;
   // Potential energy of the swing of a full-coordinate state above the hanging rope [J].
   double swingEnergy(const CoupledState& full) const;
 
