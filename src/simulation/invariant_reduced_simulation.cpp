@@ -83,6 +83,7 @@ HandOverSimulation::Start InvariantReducedSimulation::startReduced(const Coupled
   // A landed start's settled rope, where the scene's basis does not hold it, adds its own shapes
   // (header: kStartShapeTolerance); a new run starts from the scene's basis.
   if (basis_ != scene_basis_) useBasis(scene_basis_);
+  snatched_ = false;
   const AncfRope& start_rope = full_.rope();
   solver_->refreshLength();  // (the start's rope: the scene's length)
   if (withinGroundMargin(start_rope.position(f.q, start_rope.nodes() - 1)) &&
@@ -103,7 +104,10 @@ HandOverSimulation::Start InvariantReducedSimulation::startReduced(const Coupled
   // A release whose axial rebound slackens the rope: the reduced steps before the slack put the
   // snatch's path off by 1 to 2 cm (docs/model.md "Hand-over to full order").
   // (Below zero by more than round-off: a stress-free rope's low point is its start's zero.)
-  if (releaseTensionLowPoint(f) < -kLowPointRoundOff * endWeight()) return Start::ringing;
+  if (releaseTensionLowPoint(f) < -kLowPointRoundOff * endWeight()) {
+    snatched_ = true;
+    return Start::ringing;
+  }
   // Else the start is handed back at once where the tests pass (a stress-free rope with a load:
   // tryTakeOver, an unloaded rope at rest), and a start the basis does not hold comes back as
   // soon as they do: a quiet hand-over.
@@ -144,6 +148,8 @@ void InvariantReducedSimulation::continueFrom(const Simulation& other) {
   full_.continueFrom(o->full_);
   // The other run's basis (the scene's, or the one its landed start adapted) with its state.
   if (o->basis_ != basis_) useBasis(o->basis_);
+  snatch_basis_ = o->snatch_basis_;
+  snatched_ = o->snatched_ || o->handOvers(Cause::slack) > 0;
   continueHandOverFrom(*o);
   indicator_due_ = o->indicator_due_;
   if (full_order_) return;
@@ -225,7 +231,37 @@ double InvariantReducedSimulation::errorIndicator(const CoupledState& f) const {
   return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
 }
 
+std::shared_ptr<const InvariantRopeBasis> InvariantReducedSimulation::snatchBasis() {
+  if (snatch_basis_) return snatch_basis_;
+  const Scene& sc = full_.model().scene;
+  InvariantBasisSettings s = invariantBasisSettings(sc);
+  const int interior = 2 * (sc.rope.elements + 1) - 1;
+  InvariantBasisSettings candidates = s;
+  candidates.axial_modes = std::min(kMaxSnatchAxialModes, interior);
+  const AncfRope rope = full_.rope().lumpedAtHook();
+  auto wide = std::make_shared<const InvariantRopeBasis>(rope, candidates);
+  const Eigen::VectorXd& omega = wide->axialOmega();
+  int resolved = 0;
+  while (resolved < omega.size() && omega(resolved) * sc.time_step <= kResolvedAxialOmegaH)
+    ++resolved;
+  if (resolved <= s.axial_modes) {
+    snatch_basis_ = scene_basis_;
+  } else if (resolved == candidates.axial_modes) {
+    snatch_basis_ = wide;
+  } else {
+    s.axial_modes = resolved;
+    snatch_basis_ = std::make_shared<const InvariantRopeBasis>(rope, s);
+  }
+  return snatch_basis_;
+}
+
 bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
+  // After a snatch, the basis with the axial modes the step resolves (kResolvedAxialOmegaH); a
+  // landed start's adapted basis stays as it is.
+  if (basis_ == scene_basis_ && (snatched_ || handOvers(Cause::slack) > 0)) {
+    const auto snatch = snatchBasis();
+    if (snatch != basis_) useBasis(snatch);
+  }
   // The full model may have hoisted since the hand-over (or a new run reset the length): the
   // solver to the rope's length first.
   solver_->refreshLength();

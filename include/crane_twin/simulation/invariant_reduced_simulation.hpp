@@ -40,7 +40,9 @@
 // rope_pendulum_chrono, whose tension touches zero at every bounce, handed back for good 0.12 s
 // in, parted from full order by 9.9 cm, rope RMS 21 cm), the hand-back is speculative
 // (HandOverSimulation): taken back to full order, exactly, where the run would hand over within
-// the speculation window, the indicator bounded by kSpeculationTolerance meanwhile. Hand-overs,
+// the speculation window, the indicator bounded by kSpeculationTolerance meanwhile. After a
+// snatch (a ringing start, a slack hand-over) the hand-back projects onto the scene's basis with
+// every axial mode the step resolves (snatchBasis, kResolvedAxialOmegaH). Hand-overs,
 // the steps taken at full order and the hand-backs taken back are counted (summary line, CSV
 // column `full_order_steps`, node diagnostics).
 #pragma once
@@ -199,6 +201,16 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   /// A rigging shorter than its unstretched length by more than this [m] is slack (tryTakeOver:
   /// a landed start's rigging is straight and unstretched, to round-off).
   static constexpr double kSlackRigging = 1e-3;
+  /// After a snatch (a start whose release rings towards slack, or a slack hand-over), the
+  /// hand-back projects onto a basis that also holds every axial mode full order's step resolves,
+  /// omega h <= kResolvedAxialOmegaH (at least 2 pi steps a period), up to kMaxSnatchAxialModes:
+  /// the rope rings axially far beyond the scene basis's two modes. Measured on the T8036 released
+  /// from its held equilibrium at 50 deg (t8036_combination1, 120 elements, 1 ms: the modes at
+  /// 11, 179, 357, ... rad/s, six with omega h <= 1): on two axial modes it came back 2.26 s in and
+  /// drifted to 1.14 cm rope RMS from full order in 20 s (full order within 0.64 mm of itself at
+  /// an eighth of the step); on six, 2.2 mm (docs/model.md "Hand-over to full order").
+  static constexpr double kResolvedAxialOmegaH = 1.0;
+  static constexpr int kMaxSnatchAxialModes = 16;
 
  protected:
   Start startReduced(const CoupledState& full) override;
@@ -231,9 +243,16 @@ class InvariantReducedSimulation final : public HandOverSimulation,
 
   // Integrate on `basis` from now on: a new solver with the scene's settings.
   void useBasis(std::shared_ptr<const InvariantRopeBasis> basis);
+  // The scene's basis with the axial modes the step resolves (kResolvedAxialOmegaH), at the
+  // rope's present length; built once, at the first hand-back trial after a snatch.
+  std::shared_ptr<const InvariantRopeBasis> snatchBasis();
 
-  std::shared_ptr<const InvariantRopeBasis> scene_basis_;  ///< the scene's, shared by copies
-  std::shared_ptr<const InvariantRopeBasis> basis_;        ///< the scene's or a start's
+  std::shared_ptr<const InvariantRopeBasis> scene_basis_;   ///< the scene's, shared by copies
+  std::shared_ptr<const InvariantRopeBasis> basis_;         ///< the scene's or a start's
+  std::shared_ptr<const InvariantRopeBasis> snatch_basis_;  ///< snatchBasis, once built
+  /// The run has snatched before: a release start whose rebound slackens the rope, or a run
+  /// continued from one that handed over for slack (this run's own slack hand-overs count too).
+  bool snatched_ = false;
   std::unique_ptr<InvariantReducedSolver> solver_;
   CoupledState state_;
   double max_indicator_ = 0.0;
