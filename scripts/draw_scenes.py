@@ -5,7 +5,8 @@ radius, rope length, duration, structure model, mesh, rigging and falls drawn, a
 adds (swing, friction, the load's offset, wind and gusts, a random command seed, a throw; `pick`
 runs the shipped pick-swing-place cycle's 70 s from a drawn radius, perhaps off-centre;
 `windland` a lift-off, set-down or that cycle in wind; `drag` a landed load under a slewing
-crane or a moving trolley, perhaps while reeling in).
+crane or a moving trolley, perhaps while reeling in; `release` a load released from its held
+equilibrium at 40 to 60 deg, whose rope slackens past 45).
 
     scripts/draw_scenes.py SEED COUNT [--kinds hang,landed,...] > LIST
     scripts/reduced_vs_full.sh LIST 2
@@ -20,7 +21,7 @@ import argparse
 import random
 
 KINDS = ("hang", "landed", "lower", "stress", "throw", "offset", "wind", "random", "pick",
-         "windland", "drag")
+         "windland", "drag", "release")
 DEFAULT_KINDS = "hang,hang,landed,lower,stress,throw"
 
 
@@ -57,6 +58,10 @@ def draw(rng, kind):
         scene = "t8036_set_down"
         o["ground.friction"] = round(rng.uniform(0, 1), 2)
         o.pop("rope.length")
+    elif kind == "release":  # released from its held equilibrium at 40 to 60 deg (slack past 45)
+        scene = "t8036_combination1"
+        o["initial.swing_deg"] = round(rng.uniform(40, 60), 1)
+        o["duration"] = round(rng.uniform(10, 20), 1)
     elif kind == "stress":  # a stress-free release from an anchor
         scene = "hard_stress_free_heavy"
         o = {k: v for k, v in o.items()
