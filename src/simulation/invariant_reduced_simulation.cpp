@@ -149,7 +149,7 @@ void InvariantReducedSimulation::continueFrom(const Simulation& other) {
   // The other run's basis (the scene's, or the one its landed start adapted) with its state.
   if (o->basis_ != basis_) useBasis(o->basis_);
   snatch_basis_ = o->snatch_basis_;
-  snatched_ = o->snatched_ || o->handOvers(Cause::slack) > 0;
+  snatched_ = o->hasSnatched();
   continueHandOverFrom(*o);
   indicator_due_ = o->indicator_due_;
   if (full_order_) return;
@@ -235,9 +235,8 @@ std::shared_ptr<const InvariantRopeBasis> InvariantReducedSimulation::snatchBasi
   if (snatch_basis_) return snatch_basis_;
   const Scene& sc = full_.model().scene;
   InvariantBasisSettings s = invariantBasisSettings(sc);
-  const int interior = 2 * (sc.rope.elements + 1) - 1;
-  InvariantBasisSettings candidates = s;
-  candidates.axial_modes = std::min(kMaxSnatchAxialModes, interior);
+  InvariantBasisSettings candidates = s;  // (capped at what a coarse rope's coordinates hold)
+  candidates.axial_modes = kMaxSnatchAxialModes;
   const AncfRope rope = full_.rope().lumpedAtHook();
   auto wide = std::make_shared<const InvariantRopeBasis>(rope, candidates);
   const Eigen::VectorXd& omega = wide->axialOmega();
@@ -246,7 +245,7 @@ std::shared_ptr<const InvariantRopeBasis> InvariantReducedSimulation::snatchBasi
     ++resolved;
   if (resolved <= s.axial_modes) {
     snatch_basis_ = scene_basis_;
-  } else if (resolved == candidates.axial_modes) {
+  } else if (resolved == omega.size()) {
     snatch_basis_ = wide;
   } else {
     s.axial_modes = resolved;
@@ -258,7 +257,7 @@ std::shared_ptr<const InvariantRopeBasis> InvariantReducedSimulation::snatchBasi
 bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // After a snatch, the basis with the axial modes the step resolves (kResolvedAxialOmegaH); a
   // landed start's adapted basis stays as it is.
-  if (basis_ == scene_basis_ && (snatched_ || handOvers(Cause::slack) > 0)) {
+  if (basis_ == scene_basis_ && hasSnatched()) {
     const auto snatch = snatchBasis();
     if (snatch != basis_) useBasis(snatch);
   }

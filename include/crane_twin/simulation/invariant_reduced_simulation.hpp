@@ -246,6 +246,8 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   // The scene's basis with the axial modes the step resolves (kResolvedAxialOmegaH), at the
   // rope's present length; built once, at the first hand-back trial after a snatch.
   std::shared_ptr<const InvariantRopeBasis> snatchBasis();
+  // A ringing start, a continued run's snatch or a slack hand-over of this run.
+  bool hasSnatched() const { return snatched_ || handOvers(Cause::slack) > 0; }
 
   std::shared_ptr<const InvariantRopeBasis> scene_basis_;   ///< the scene's, shared by copies
   std::shared_ptr<const InvariantRopeBasis> basis_;         ///< the scene's or a start's
