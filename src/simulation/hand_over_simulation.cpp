@@ -50,7 +50,7 @@ void HandOverSimulation::enterFullOrder(Cause c, bool quiet) {
 
 void HandOverSimulation::handOverOrTakeBack(Cause c) {
   if (speculating_) return takeBack(c);
-  handOver(handOverState(), c);
+  handOver(handOverState(c), c);
 }
 
 void HandOverSimulation::takeBack(Cause c) {
@@ -150,7 +150,7 @@ void HandOverSimulation::step() {
     const Cause c = verdict == Verdict::failed ? Cause::failure : Cause::fast_hoist;
     if (speculating_) return takeBack(c);  // (the replay takes this step too)
     // The reduced state is at the step's start: the full model takes the step.
-    handOver(handOverState(), c);
+    handOver(handOverState(c), c);
     full_.stepAfterDrives();
     ++full_order_steps_;
     return;

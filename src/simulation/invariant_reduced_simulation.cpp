@@ -205,6 +205,12 @@ bool InvariantReducedSimulation::riggingSlackInTheAir() const {
 }
 
 double InvariantReducedSimulation::errorIndicator(const CoupledState& f) const {
+  Eigen::VectorXd dq;
+  return staticCorrection(f, dq);
+}
+
+double InvariantReducedSimulation::staticCorrection(const CoupledState& f,
+                                                    Eigen::VectorXd& dq) const {
   const AncfRope& rope = full_.rope();
   const SparseMatrix& M = rope.massMatrix();
   Eigen::VectorXd Q;
@@ -224,11 +230,48 @@ double InvariantReducedSimulation::errorIndicator(const CoupledState& f) const {
   }
   indicator_ldlt_.factorize(A);
   if (indicator_ldlt_.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
-  const Eigen::VectorXd dq = indicator_ldlt_.solve(r.tail(r.size() - 3));
+  dq = indicator_ldlt_.solve(r.tail(r.size() - 3));
   double e = 0.0;
   for (int j = 1; j < rope.nodes(); ++j)
     e = std::max(e, dq.segment<3>(rope.positionIndex(j) - 3).norm());
   return std::isfinite(e) ? e : std::numeric_limits<double>::infinity();
+}
+
+CoupledState InvariantReducedSimulation::quasiStaticallyRelaxed(const CoupledState& full) const {
+  // Newton on the full model's equations at full's accelerations, F_g - M q'' - Q(q, q') = 0,
+  // in the M-orthogonal complement of the basis: with A = K + M (the indicator's matrix, the
+  // top's position held) and C = M B (B's columns but the top's translation psi_0, which the
+  // held top fixes), each correction solves
+  //   [A  C; C^T  0] [dq; mu] = [r; 0],  dq = A^-1 r - X S^-1 C^T A^-1 r,  X = A^-1 C, S = C^T X,
+  // so the reduced coordinates (the projection of q) stay as they are.
+  const int n = full.q.size();
+  const int k = basis_->coordinates() + (full_.rope().hasRigging() ? 3 : 0) - 3;
+  Eigen::MatrixXd B(n, k);
+  CoupledState unit = state_;
+  for (int c = 0; c < k; ++c) {
+    unit.q = Eigen::VectorXd::Unit(k + 3, c + 3);
+    unit.v = unit.qdd = unit.a = Eigen::VectorXd::Zero(k + 3);
+    B.col(c) = solver_->expand(unit).q;
+  }
+  const Eigen::MatrixXd C = (full_.rope().massMatrix() * B).bottomRows(n - 3);
+  CoupledState f = full;
+  Eigen::VectorXd dq;
+  double first = 0.0, last = 0.0;
+  for (int it = 0; it < kQuasiStaticIterations; ++it) {
+    if (!std::isfinite(staticCorrection(f, dq))) return full;  // (A factorised, dq = A^-1 r)
+    const Eigen::MatrixXd X = indicator_ldlt_.solve(C);
+    const Eigen::VectorXd mu = (C.transpose() * X).ldlt().solve(C.transpose() * dq);
+    dq -= X * mu;
+    double e = 0.0;
+    for (int j = 1; j < full_.rope().nodes(); ++j)
+      e = std::max(e, dq.segment<3>(full_.rope().positionIndex(j) - 3).norm());
+    if (!std::isfinite(e)) return full;
+    if (it == 0) first = e;
+    last = e;
+    f.q.tail(n - 3) += dq;
+    if (e < kQuasiStaticTolerance) return f;
+  }
+  return last < first ? f : full;
 }
 
 std::shared_ptr<const InvariantRopeBasis> InvariantReducedSimulation::snatchBasis() {
@@ -334,8 +377,11 @@ HandOverSimulation::Verdict InvariantReducedSimulation::reducedStep() {
   return Verdict::carried;
 }
 
-CoupledState InvariantReducedSimulation::handOverState() {
+CoupledState InvariantReducedSimulation::handOverState(Cause c) {
   syncFullRope();
+  // The indicator found the basis's fixed components off their quasi-static shape by at least
+  // kIndicatorTolerance: full order starts with them settled (kQuasiStaticTolerance).
+  if (c == Cause::indicator) return quasiStaticallyRelaxed(solver_->expand(state_));
   return solver_->expand(state_);
 }
 

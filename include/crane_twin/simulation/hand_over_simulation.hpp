@@ -151,8 +151,9 @@ class HandOverSimulation : public Simulation {
   /// Take over a full-coordinate state (full_'s current); false, nothing changed, where the
   /// reduced rope cannot carry it.
   virtual bool tryTakeOver(const CoupledState& full) = 0;
-  /// The full-coordinate state handed over to full order (the reduced state expanded).
-  virtual CoupledState handOverState() = 0;
+  /// The full-coordinate state handed over to full order for cause c (the reduced state
+  /// expanded; a reduced rope may relax what its basis held fixed, by cause).
+  virtual CoupledState handOverState(Cause c) = 0;
   /// Whether full order restarts its accelerations from the handed-over positions and
   /// velocities (else it takes the expanded accelerations as they are).
   virtual bool restartsAtHandOver() const = 0;
@@ -225,7 +226,7 @@ class HandOverSimulation : public Simulation {
       false;  ///< the resting load's rope has been loaded (restingRopeUnloaded)
   int hand_back_interval_ = 0, hand_back_countdown_ = 0;
 
-  // The hand-over for cause c at the end of a reduced step (its state `handOverState()`), or
+  // The hand-over for cause c at the end of a reduced step (its state `handOverState(c)`), or
   // the speculative hand-back taken back where one is open.
   void handOverOrTakeBack(Cause c);
   // The full-order bookkeeping of a hand-over at the present (schedule, counters).

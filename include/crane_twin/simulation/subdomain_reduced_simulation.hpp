@@ -68,7 +68,7 @@ class SubdomainReducedSimulation final : public HandOverSimulation {
   Start startReduced(const CoupledState& full) override;
   Verdict reducedStep() override;
   bool tryTakeOver(const CoupledState& full) override;
-  CoupledState handOverState() override { return solver_->fullState(); }
+  CoupledState handOverState(Cause) override { return solver_->fullState(); }
   bool restartsAtHandOver() const override { return false; }
   double reducedTime() const override { return solver_->state().t; }
   const Eigen::VectorXd& reducedSupport() const override { return solver_->state().z; }
