@@ -49,8 +49,12 @@ void HandOverSimulation::enterFullOrder(Cause c, bool quiet) {
 }
 
 void HandOverSimulation::handOverOrTakeBack(Cause c) {
-  if (speculating_) return takeBack(c);
+  if (takesBack(c)) return takeBack(c);
   handOver(handOverState(c), c);
+}
+
+bool HandOverSimulation::takesBack(Cause c) const {
+  return speculating_ && (rings_towards_slack_ || c == Cause::slack || c == Cause::failure);
 }
 
 void HandOverSimulation::takeBack(Cause c) {
@@ -106,11 +110,12 @@ bool HandOverSimulation::tryHandBack() {
   // (Asked before tryTakeOver, which takes the state over.)
   const bool speculative = handBackIsSpeculative(f);
   if (!tryTakeOver(f)) return false;
-  if (speculative) {
+  if (speculative || handBackGuarded()) {
     // The checkpoint: full order's state, drives and stepping at the hand-back (header).
     if (!checkpoint_) checkpoint_ = std::make_unique<CraneSimulation>(full_.model());
     checkpoint_->continueFrom(full_);
     speculating_ = true;  // (inputs_ is empty: every speculation's end clears it)
+    rings_towards_slack_ = speculative;
     speculative_steps_ = 0;
   }
   full_order_ = false;
@@ -148,7 +153,7 @@ void HandOverSimulation::step() {
   const Verdict verdict = reducedStep();
   if (verdict != Verdict::carried) {
     const Cause c = verdict == Verdict::failed ? Cause::failure : Cause::fast_hoist;
-    if (speculating_) return takeBack(c);  // (the replay takes this step too)
+    if (takesBack(c)) return takeBack(c);  // (the replay takes this step too)
     // The reduced state is at the step's start: the full model takes the step.
     handOver(handOverState(c), c);
     full_.stepAfterDrives();

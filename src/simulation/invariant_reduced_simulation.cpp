@@ -399,7 +399,7 @@ bool InvariantReducedSimulation::errorTooLarge(long steps) {
   syncFullRope();
   const double e = errorIndicator(solver_->expand(state_));
   max_indicator_ = std::max(max_indicator_, e);
-  return !(e < (speculating() ? kSpeculationTolerance : kIndicatorTolerance));
+  return !(e < (speculationRingsTowardsSlack() ? kSpeculationTolerance : kIndicatorTolerance));
 }
 
 void InvariantReducedSimulation::syncFullRope() {

@@ -26,7 +26,10 @@
 //    instead: full order re-integrates from the checkpoint to the present, replaying those
 //    inputs at their steps, and continues the full-order run as if it had never handed back
 //    (the rows already written stay the reduced rope's). Past the window, or at a measured
-//    motion (setMotion), the hand-back is kept and the checkpoint dropped.
+//    motion (setMotion), the hand-back is kept and the checkpoint dropped. A guarded hand-back
+//    (handBackGuarded: a reduced rope's after a snatch) keeps the same checkpoint but is taken
+//    back only for a slack episode or a failed step within the window; any other hand-over
+//    keeps it.
 // A start the reduced rope does not take over runs at full order from t = 0. The hanging weight
 // W = (m_end + mu L) g and the end mass's static strain m_end g / EA are the scene's.
 #pragma once
@@ -125,10 +128,13 @@ class HandOverSimulation : public Simulation {
   long handOvers() const;
   long fullOrderSteps() const { return full_order_steps_; }
   bool integratingFullOrder() const { return full_order_; }
-  /// Speculative hand-backs taken back so far (re-integrated at full order), and whether the
-  /// run is in one now.
+  /// Speculative hand-backs taken back so far (re-integrated at full order), whether the run is
+  /// in one now, and whether that one rings towards slack (handBackIsSpeculative: taken back
+  /// for any hand-over) rather than being guarded after a snatch (handBackGuarded: taken back
+  /// for a slack episode or a failed step only).
   long handBacksTakenBack() const { return taken_back_; }
   bool speculating() const { return speculating_; }
+  bool speculationRingsTowardsSlack() const { return speculating_ && rings_towards_slack_; }
 
   /// The rope length being integrated [m] (the full rope's while at full order).
   double ropeLength() const { return full_order_ ? full_.ropeLength() : reducedLength(); }
@@ -170,6 +176,12 @@ class HandOverSimulation : public Simulation {
   /// A hand-back tryTakeOver accepted that the reduced rope cannot vouch for beyond the present
   /// (default: none): it is speculative (header).
   virtual bool handBackIsSpeculative(const CoupledState& /*full*/) const { return false; }
+  /// A hand-back that is not speculative but guarded (default: none): its checkpoint is kept as
+  /// a speculative one's, and where the run hands over within speculation_window of it for a
+  /// slack episode or a failed step, the hand-back is taken back; any other hand-over keeps it.
+  /// A reduced rope guards what it carries after a snatch, whose next slack episode would
+  /// amplify the basis's small drift (header).
+  virtual bool handBackGuarded() const { return false; }
   /// Checked after every carried reduced step: the rope is slack and full order takes over.
   /// Default: the top tension under slack_tension_fraction of W or, every strain_check_steps
   /// steps, a point's strain under slack_strain_fraction of the end mass's static strain.
@@ -229,6 +241,8 @@ class HandOverSimulation : public Simulation {
   // The hand-over for cause c at the end of a reduced step (its state `handOverState(c)`), or
   // the speculative hand-back taken back where one is open.
   void handOverOrTakeBack(Cause c);
+  // An open speculation is taken back for a hand-over for cause c (header).
+  bool takesBack(Cause c) const;
   // The full-order bookkeeping of a hand-over at the present (schedule, counters).
   void enterFullOrder(Cause c, bool quiet);
   // Re-integrate full order from the checkpoint over the speculative steps (header).
@@ -241,7 +255,8 @@ class HandOverSimulation : public Simulation {
   };
   std::unique_ptr<CraneSimulation> checkpoint_;  ///< full order at the speculative hand-back
   bool speculating_ = false;
-  long speculative_steps_ = 0;  ///< reduced steps since the checkpoint
+  bool rings_towards_slack_ = false;  ///< the speculation is handBackIsSpeculative's
+  long speculative_steps_ = 0;        ///< reduced steps since the checkpoint
   std::vector<LoggedInput> inputs_;
   long taken_back_ = 0;
 };
