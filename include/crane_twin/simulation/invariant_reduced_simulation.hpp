@@ -236,7 +236,8 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   Verdict reducedStep() override;
   bool tryTakeOver(const CoupledState& full) override;
   bool handBackIsSpeculative(const CoupledState& full) const override;
-  /// After a snatch (hasSnatched): every hand-back is guarded (header, kGuardAfterSnatch).
+  /// After a snatch (hasSnatched): every hand-back is guarded (HandOverSimulation, docs/model.md
+  /// "Hand-over to full order": a guarded hand-back).
   bool handBackGuarded() const override { return hasSnatched(); }
   CoupledState handOverState(Cause c) override;
   bool restartsAtHandOver() const override { return true; }
