@@ -231,6 +231,11 @@ double InvariantReducedSimulation::staticCorrection(const CoupledState& f,
   indicator_ldlt_.factorize(A);
   if (indicator_ldlt_.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
   dq = indicator_ldlt_.solve(r.tail(r.size() - 3));
+  return largestNodeCorrection(dq);
+}
+
+double InvariantReducedSimulation::largestNodeCorrection(const Eigen::VectorXd& dq) const {
+  const AncfRope& rope = full_.rope();
   double e = 0.0;
   for (int j = 1; j < rope.nodes(); ++j)
     e = std::max(e, dq.segment<3>(rope.positionIndex(j) - 3).norm());
@@ -262,9 +267,7 @@ CoupledState InvariantReducedSimulation::quasiStaticallyRelaxed(const CoupledSta
     const Eigen::MatrixXd X = indicator_ldlt_.solve(C);
     const Eigen::VectorXd mu = (C.transpose() * X).ldlt().solve(C.transpose() * dq);
     dq -= X * mu;
-    double e = 0.0;
-    for (int j = 1; j < full_.rope().nodes(); ++j)
-      e = std::max(e, dq.segment<3>(full_.rope().positionIndex(j) - 3).norm());
+    const double e = largestNodeCorrection(dq);
     if (!std::isfinite(e)) return full;
     if (it == 0) first = e;
     last = e;

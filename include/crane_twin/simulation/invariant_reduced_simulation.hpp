@@ -264,6 +264,9 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   // (errorIndicator, header), into dq (the rope's coordinates less the top's position); returns
   // its largest node |dq| [m], infinity where the matrix is singular.
   double staticCorrection(const CoupledState& full, Eigen::VectorXd& dq) const;
+  // Largest node position |dq_j| of a correction over the rope's coordinates less the top's
+  // position [m] (infinity where it is not finite).
+  double largestNodeCorrection(const Eigen::VectorXd& dq) const;
   // Potential energy of the swing of a full-coordinate state above the hanging rope [J].
   double swingEnergy(const CoupledState& full) const;
 
