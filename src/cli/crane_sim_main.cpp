@@ -243,12 +243,12 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
       "summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=%d mode_updates_s=%.3g "
       "hand_overs=%ld taken_back=%ld full_order_steps=%ld warnings_seen=%d warning_rows=%s "
       "energy_consistent_steps=%ld halved_steps=%ld lift_offs=%d lift_off_factor=%.4g "
-      "peak_tension_ratio=%.4g\n",
+      "peak_tension_ratio=%.4g basis_additions=%ld\n",
       wall, simS, simS / wall, steps, stats.subdomains, stats.mode_update_seconds, stats.hand_overs,
       stats.hand_backs_taken_back, stats.full_order_steps, seen,
       rows_per_bit.empty() ? "none" : rows_per_bit.c_str(), stats.energy_consistent_steps,
       stats.halved_steps, lift_off.liftOffs(), lift_off.factor(),
-      peak_tension / m.rope.breaking_force);
+      peak_tension / m.rope.breaking_force, stats.basis_additions);
   return 0;
 }
 

@@ -236,6 +236,7 @@ RunStatistics HandOverSimulation::statistics() const {
   r.hand_backs_taken_back = taken_back_;
   r.full_order_steps = full_order_steps_;
   r.integrating_full_order = full_order_;
+  r.basis_additions = reducedBasisAdditions();
   return r;
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 #include "crane_twin/integrators/numerical_failure.hpp"
 #include "crane_twin/io/input_error.hpp"
@@ -64,6 +65,10 @@ InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model)
 
 void InvariantReducedSimulation::useBasis(std::shared_ptr<const InvariantRopeBasis> basis) {
   const Scene& sc = full_.model().scene;
+  if (solver_) {
+    retired_halved_steps_ += solver_->halvedSteps();
+    retired_energy_consistent_steps_ += solver_->energyConsistentSteps();
+  }
   // (the solver references the basis: the new one first)
   solver_.reset();
   basis_ = std::move(basis);
@@ -83,6 +88,8 @@ HandOverSimulation::Start InvariantReducedSimulation::startReduced(const Coupled
   // A landed start's settled rope, where the scene's basis does not hold it, adds its own shapes
   // (header: kStartShapeTolerance); a new run starts from the scene's basis.
   if (basis_ != scene_basis_) useBasis(scene_basis_);
+  retired_halved_steps_ = retired_energy_consistent_steps_ = 0;
+  basis_additions_ = 0;
   snatched_ = false;
   const AncfRope& start_rope = full_.rope();
   solver_->refreshLength();  // (the start's rope: the scene's length)
@@ -91,6 +98,7 @@ HandOverSimulation::Start InvariantReducedSimulation::startReduced(const Coupled
     useBasis(std::make_shared<const InvariantRopeBasis>(
         scene_basis_->withShapesOf(f.q, start_rope.massMatrix(), full_.ropeLength())));
   }
+  base_basis_ = basis_;
   solver_->resetSwitching();
   // A velocity given to the payload alone starts at full order, as for a lumped load (whose
   // basis refuses it): on a rigging the payload point carries it exactly, but its bar then loads
@@ -148,6 +156,8 @@ void InvariantReducedSimulation::continueFrom(const Simulation& other) {
   full_.continueFrom(o->full_);
   // The other run's basis (the scene's, or the one its landed start adapted) with its state.
   if (o->basis_ != basis_) useBasis(o->basis_);
+  base_basis_ = o->base_basis_;
+  basis_additions_ = o->basis_additions_;
   snatch_basis_ = o->snatch_basis_;
   snatched_ = o->hasSnatched();
   continueHandOverFrom(*o);
@@ -303,10 +313,14 @@ std::shared_ptr<const InvariantRopeBasis> InvariantReducedSimulation::snatchBasi
 bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // After a snatch, the basis with the axial modes the step resolves (kResolvedAxialOmegaH); a
   // landed start's adapted basis stays as it is.
+  // Shapes an indicator miss added (addShapesOf) held the state of then: the hand-back
+  // projects onto the basis before them.
+  if (basis_ != base_basis_) useBasis(base_basis_);
   if (basis_ == scene_basis_ && hasSnatched()) {
     const auto snatch = snatchBasis();
     if (snatch != basis_) useBasis(snatch);
   }
+  base_basis_ = basis_;
   // The full model may have hoisted since the hand-over (or a new run reset the length): the
   // solver to the rope's length first.
   solver_->refreshLength();
@@ -400,9 +414,53 @@ bool InvariantReducedSimulation::errorTooLarge(long steps) {
   }
   indicator_due_ = false;
   syncFullRope();
-  const double e = errorIndicator(solver_->expand(state_));
+  const CoupledState f = solver_->expand(state_);
+  const double e = errorIndicator(f);
   max_indicator_ = std::max(max_indicator_, e);
-  return !(e < (speculationRingsTowardsSlack() ? kSpeculationTolerance : kIndicatorTolerance));
+  // A speculation that rings towards slack is taken back at its bound instead (header).
+  if (speculationRingsTowardsSlack()) return !(e < kSpeculationTolerance);
+  return !(e < kIndicatorTolerance) && !addShapesOf(f);
+}
+
+void InvariantReducedSimulation::setMaxAddedShapes(int shapes) {
+  if (shapes < 0) throw std::invalid_argument("added shapes: zero or more");
+  max_added_shapes_ = shapes;
+}
+
+bool InvariantReducedSimulation::addShapesOf(const CoupledState& f) {
+  // The relaxed state (quasiStaticallyRelaxed) keeps f's projection, velocities and
+  // accelerations; its own shapes added, the basis holds it exactly, so the reduced run goes on
+  // from it as full order would from the relaxed hand-over.
+  if (basis_->shapes() + 3 > base_basis_->shapes() + max_added_shapes_) return false;
+  const CoupledState relaxed = quasiStaticallyRelaxed(f);
+  if (relaxed.q == f.q) return false;  // (the relaxation did not settle)
+  const AncfRope& rope = full_.rope();
+  auto added = std::make_shared<const InvariantRopeBasis>(
+      basis_->withShapesOf(relaxed.q, rope.massMatrix(), full_.ropeLength()));
+  if (added->shapes() == basis_->shapes()) return false;
+  // (the old solver, kept with its basis, goes on where the new one cannot)
+  const std::shared_ptr<const InvariantRopeBasis> before = basis_;
+  std::unique_ptr<InvariantReducedSolver> old = std::move(solver_);
+  useBasis(added);  // (at the rope's length as the full model rounds it, syncFullRope)
+  solver_->continueSteppingOf(*old);
+  CoupledState r = solver_->project(relaxed);
+  bool carried = true;
+  try {
+    solver_->initializeAccelerations(r);
+  } catch (const NumericalFailure&) {
+    carried = false;
+  }
+  if (carried) carried = errorIndicator(solver_->expand(r)) < kIndicatorTolerance;
+  if (!carried) {
+    solver_ = std::move(old);
+    basis_ = before;
+    return false;
+  }
+  retired_halved_steps_ += old->halvedSteps();
+  retired_energy_consistent_steps_ += old->energyConsistentSteps();
+  state_ = r;
+  ++basis_additions_;
+  return true;
 }
 
 void InvariantReducedSimulation::syncFullRope() {

@@ -19,7 +19,9 @@
 //    stretched under kIndicatorStrainFraction of the end mass's strain): the displacement a
 //    static correction of the full equations' residual at the expanded state would add,
 //    dq = (K + M)^-1 r (M in kg, K in N/m, so the shift is 1 s^-2) with the top held (what the
-//    basis leaves out), exceeds kIndicatorTolerance at a node.
+//    basis leaves out), exceeds kIndicatorTolerance at a node, and the basis cannot take the
+//    state's own shapes (addShapesOf: up to kMaxAddedShapes over the basis the run started or
+//    came back on; a hand-back returns to that basis).
 // A start the basis does not carry (the hand-back criteria below fail on the scene's initial
 // state: a velocity given to the payload alone) begins at full order, and so
 // does a release whose axial rebound will slacken the rope (releaseTensionLowPoint below zero:
@@ -230,6 +232,19 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   /// reduced run's own 0.44 kN before it; docs/model.md "Hand-over to full order").
   static constexpr double kQuasiStaticTolerance = 1e-5;  ///< [m]
   static constexpr int kQuasiStaticIterations = 5;
+  /// An indicator miss outside a speculation that rings towards slack first adds the shapes of
+  /// the state relaxed by quasiStaticallyRelaxed to the basis (InvariantRopeBasis::withShapesOf:
+  /// at most three scalar shapes, one per direction) and stays reduced on the state's projection
+  /// onto it, which is the relaxed state itself; up to kMaxAddedShapes shapes over the basis the
+  /// run started or came back on, then a miss hands over. Measured on the 48 deg release with
+  /// 1.2 t on 30 m (docs/model.md "Hand-over to full order", "Shapes added at an indicator
+  /// miss").
+  static constexpr int kMaxAddedShapes = 9;
+  /// Shapes an indicator miss may add (kMaxAddedShapes; 0: every miss hands over, as a
+  /// comparison).
+  void setMaxAddedShapes(int shapes);
+  /// Indicator misses absorbed by added shapes so far.
+  long basisAdditions() const { return basis_additions_; }
 
  protected:
   Start startReduced(const CoupledState& full) override;
@@ -249,8 +264,13 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   double reducedLength() const override { return solver_->length(); }
   double reducedTopTension() const override { return solver_->topTension(state_); }
   double reducedMinStrain() const override { return solver_->minStrain(state_.q); }
-  long reducedHalvedSteps() const override { return solver_->halvedSteps(); }
-  long reducedEnergyConsistentSteps() const override { return solver_->energyConsistentSteps(); }
+  long reducedHalvedSteps() const override {
+    return retired_halved_steps_ + solver_->halvedSteps();
+  }
+  long reducedEnergyConsistentSteps() const override {
+    return retired_energy_consistent_steps_ + solver_->energyConsistentSteps();
+  }
+  long reducedBasisAdditions() const override { return basis_additions_; }
   bool slackened() const override;
   bool errorTooLarge(long steps) override;
   bool carriesGround() const override { return true; }
@@ -270,16 +290,24 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   // Potential energy of the swing of a full-coordinate state above the hanging rope [J].
   double swingEnergy(const CoupledState& full) const;
 
-  // Integrate on `basis` from now on: a new solver with the scene's settings.
+  // Integrate on `basis` from now on: a new solver with the scene's settings (the old one's step
+  // counts kept for the run's statistics).
   void useBasis(std::shared_ptr<const InvariantRopeBasis> basis);
+  // At an indicator miss on the reduced state expanded to `full`: the basis with the shapes of
+  // full relaxed (kMaxAddedShapes), the reduced state its projection there. False, nothing
+  // changed, where the shapes would pass the cap, the relaxation does not settle, or the
+  // indicator at the new state still misses.
+  bool addShapesOf(const CoupledState& full);
   // The scene's basis with the axial modes the step resolves (kResolvedAxialOmegaH), at the
   // rope's present length; built once, at the first hand-back trial after a snatch.
   std::shared_ptr<const InvariantRopeBasis> snatchBasis();
   // A ringing start, a continued run's snatch or a slack hand-over of this run.
   bool hasSnatched() const { return snatched_ || handOvers(Cause::slack) > 0; }
 
-  std::shared_ptr<const InvariantRopeBasis> scene_basis_;   ///< the scene's, shared by copies
-  std::shared_ptr<const InvariantRopeBasis> basis_;         ///< the scene's or a start's
+  std::shared_ptr<const InvariantRopeBasis> scene_basis_;  ///< the scene's, shared by copies
+  std::shared_ptr<const InvariantRopeBasis> basis_;        ///< base_basis_, with added shapes
+  /// The scene's, a start's or the snatch basis: what the run started or came back on.
+  std::shared_ptr<const InvariantRopeBasis> base_basis_;
   std::shared_ptr<const InvariantRopeBasis> snatch_basis_;  ///< snatchBasis, once built
   /// The run has snatched before: a release start whose rebound slackens the rope, or a run
   /// continued from one that handed over for slack (this run's own slack hand-overs count too).
@@ -287,6 +315,9 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   std::unique_ptr<InvariantReducedSolver> solver_;
   CoupledState state_;
   double max_indicator_ = 0.0;
+  int max_added_shapes_ = kMaxAddedShapes;
+  long basis_additions_ = 0;
+  long retired_halved_steps_ = 0, retired_energy_consistent_steps_ = 0;  ///< replaced solvers'
   bool indicator_due_ = false;  ///< an indicator check postponed by a switching episode
   mutable Eigen::SimplicialLDLT<SparseMatrix> indicator_ldlt_;
   mutable bool indicator_pattern_ = false;

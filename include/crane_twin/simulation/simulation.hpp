@@ -80,6 +80,9 @@ struct RunStatistics {
   long hand_backs_taken_back = 0;
   long full_order_steps = 0;
   bool integrating_full_order = false;
+  /// Reduced rope: error indicator misses absorbed by adding shapes to the basis instead of a
+  /// hand-over (InvariantReducedSimulation::kMaxAddedShapes).
+  long basis_additions = 0;
 };
 
 class Simulation {
