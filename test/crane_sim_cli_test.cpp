@@ -196,8 +196,9 @@ TEST(CraneSimCli, RunWritesSpecColumnsAndSummary) {
   const auto l = lines(r.out);
   ASSERT_FALSE(l.empty());
   EXPECT_TRUE(l.back().rfind("summary: wall_s=", 0) == 0) << l.back();
-  for (const char* k : {" sim_s=0.1 ", " rtf=", " steps=100 ", " subdomains=0 ", " mode_updates_s=",
-                        " lift_offs=0 ", " lift_off_factor=0 ", " peak_tension_ratio="}) {
+  for (const char* k : {" sim_s=0.1 ", " rtf=", " steps=100 ", " subdomains=0 ",
+                        " mode_updates_s=", " lift_offs=0 ", " lift_off_factor=0 ",
+                        " peak_tension_ratio=", " basis_additions=0"}) {
     EXPECT_NE(l.back().find(k), std::string::npos) << k;
   }
   std::ifstream in(csv);
