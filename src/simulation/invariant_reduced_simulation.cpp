@@ -3,6 +3,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 
@@ -311,10 +312,9 @@ std::shared_ptr<const InvariantRopeBasis> InvariantReducedSimulation::snatchBasi
 }
 
 bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
-  // After a snatch, the basis with the axial modes the step resolves (kResolvedAxialOmegaH); a
-  // landed start's adapted basis stays as it is.
-  // Shapes an indicator miss added (addShapesOf) held the state of then: the hand-back
-  // projects onto the basis before them.
+  // Shapes added before (withShapesOf) held a state of then: the hand-back starts from the
+  // basis before them. After a snatch, the basis with the axial modes the step resolves
+  // (kResolvedAxialOmegaH); a landed start's adapted basis stays as it is.
   if (basis_ != base_basis_) useBasis(base_basis_);
   if (basis_ == scene_basis_ && hasSnatched()) {
     const auto snatch = snatchBasis();
@@ -324,6 +324,18 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // The full model may have hoisted since the hand-over (or a new run reset the length): the
   // solver to the rope's length first.
   solver_->refreshLength();
+  if (takeOverOnBasis(f)) return true;
+  // What the basis drops, up to what a reduced run hands over for, added as the state's own
+  // shapes (header: kMaxAddedShapes): the tests then weigh the velocities and accelerations.
+  // Not for a load on the ground: a landing's waves on its unloaded rope pass the tests on the
+  // added shapes and then leave them (header).
+  const AncfRope& rope = full_.rope();
+  if (withinGroundMargin(rope.position(f.q, rope.nodes() - 1))) return false;
+  if (!(solver_->projectionError(f.q) <= kIndicatorTolerance)) return false;
+  return withShapesOf(f.q, [&] { return takeOverOnBasis(f); });
+}
+
+bool InvariantReducedSimulation::takeOverOnBasis(const CoupledState& f) {
   // Not while a rigging's payload rests with its rigging slack: the hook block then hangs alone
   // on the rope and bobs on it (the jib's rebound), snatching the rigging, on a rope whose basis
   // is shaped for the hook and payload lumped; carried so, a 4 t set-down on a 4 m rigging
@@ -431,34 +443,39 @@ bool InvariantReducedSimulation::addShapesOf(const CoupledState& f) {
   // The relaxed state (quasiStaticallyRelaxed) keeps f's projection, velocities and
   // accelerations; its own shapes added, the basis holds it exactly, so the reduced run goes on
   // from it as full order would from the relaxed hand-over.
-  if (basis_->shapes() + 3 > base_basis_->shapes() + max_added_shapes_) return false;
   const CoupledState relaxed = quasiStaticallyRelaxed(f);
   if (relaxed.q == f.q) return false;  // (the relaxation did not settle)
-  const AncfRope& rope = full_.rope();
+  return withShapesOf(relaxed.q, [&] {
+    CoupledState r = solver_->project(relaxed);
+    try {
+      solver_->initializeAccelerations(r);
+    } catch (const NumericalFailure&) {
+      return false;
+    }
+    if (!(errorIndicator(solver_->expand(r)) < kIndicatorTolerance)) return false;
+    state_ = r;
+    return true;
+  });
+}
+
+bool InvariantReducedSimulation::withShapesOf(const Eigen::VectorXd& q,
+                                              const std::function<bool()>& attempt) {
+  if (basis_->shapes() + 3 > base_basis_->shapes() + max_added_shapes_) return false;
   auto added = std::make_shared<const InvariantRopeBasis>(
-      basis_->withShapesOf(relaxed.q, rope.massMatrix(), full_.ropeLength()));
+      basis_->withShapesOf(q, full_.rope().massMatrix(), full_.ropeLength()));
   if (added->shapes() == basis_->shapes()) return false;
-  // (the old solver, kept with its basis, goes on where the new one cannot)
+  // (the old solver, kept with its basis, goes on where the attempt fails)
   const std::shared_ptr<const InvariantRopeBasis> before = basis_;
   std::unique_ptr<InvariantReducedSolver> old = std::move(solver_);
   useBasis(added);  // (at the rope's length as the full model rounds it, syncFullRope)
   solver_->continueSteppingOf(*old);
-  CoupledState r = solver_->project(relaxed);
-  bool carried = true;
-  try {
-    solver_->initializeAccelerations(r);
-  } catch (const NumericalFailure&) {
-    carried = false;
-  }
-  if (carried) carried = errorIndicator(solver_->expand(r)) < kIndicatorTolerance;
-  if (!carried) {
+  if (!attempt()) {
     solver_ = std::move(old);
     basis_ = before;
     return false;
   }
   retired_halved_steps_ += old->halvedSteps();
   retired_energy_consistent_steps_ += old->energyConsistentSteps();
-  state_ = r;
   ++basis_additions_;
   return true;
 }

@@ -80,8 +80,8 @@ struct RunStatistics {
   long hand_backs_taken_back = 0;
   long full_order_steps = 0;
   bool integrating_full_order = false;
-  /// Reduced rope: error indicator misses absorbed by adding shapes to the basis instead of a
-  /// hand-over (InvariantReducedSimulation::kMaxAddedShapes).
+  /// Reduced rope: the times it added a state's shapes to its basis, at an error indicator's
+  /// miss or a hand-back (InvariantReducedSimulation::kMaxAddedShapes).
   long basis_additions = 0;
 };
 
