@@ -1346,7 +1346,9 @@ TEST(InvariantReduced, AHandBackAfterASnatchIsTakenBackAtTheNextSlackEpisode) {
         "up to %d shapes added: payload %.3g m, rope RMS %.3g m, hand-overs %ld (%ld taken "
         "back)\n",
         added, payload, rope, red.handOvers(), red.handBacksTakenBack());
-    if (added == 0) EXPECT_EQ(red.handBacksTakenBack(), 1);
+    if (added == 0) {
+      EXPECT_EQ(red.handBacksTakenBack(), 1);
+    }
     EXPECT_GE(red.handBacksTakenBack(), 1);
     EXPECT_LT(payload, 0.01);
     EXPECT_LT(rope, 0.01);

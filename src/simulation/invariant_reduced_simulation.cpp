@@ -64,12 +64,14 @@ InvariantReducedSimulation::InvariantReducedSimulation(const CraneModel& model)
   useBasis(scene_basis_);
 }
 
+void InvariantReducedSimulation::retireCounts(const InvariantReducedSolver& replaced) {
+  retired_halved_steps_ += replaced.halvedSteps();
+  retired_energy_consistent_steps_ += replaced.energyConsistentSteps();
+}
+
 void InvariantReducedSimulation::useBasis(std::shared_ptr<const InvariantRopeBasis> basis) {
   const Scene& sc = full_.model().scene;
-  if (solver_) {
-    retired_halved_steps_ += solver_->halvedSteps();
-    retired_energy_consistent_steps_ += solver_->energyConsistentSteps();
-  }
+  if (solver_) retireCounts(*solver_);
   // (the solver references the basis: the new one first)
   solver_.reset();
   basis_ = std::move(basis);
@@ -330,7 +332,7 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // Not for a load on the ground: a landing's waves on its unloaded rope pass the tests on the
   // added shapes and then leave them (header).
   const AncfRope& rope = full_.rope();
-  if (withinGroundMargin(rope.position(f.q, rope.nodes() - 1))) return false;
+  if (!mayAddShapes() || withinGroundMargin(rope.position(f.q, rope.nodes() - 1))) return false;
   if (!(solver_->projectionError(f.q) <= kIndicatorTolerance)) return false;
   return withShapesOf(f.q, [&] { return takeOverOnBasis(f); });
 }
@@ -443,6 +445,7 @@ bool InvariantReducedSimulation::addShapesOf(const CoupledState& f) {
   // The relaxed state (quasiStaticallyRelaxed) keeps f's projection, velocities and
   // accelerations; its own shapes added, the basis holds it exactly, so the reduced run goes on
   // from it as full order would from the relaxed hand-over.
+  if (!mayAddShapes()) return false;
   const CoupledState relaxed = quasiStaticallyRelaxed(f);
   if (relaxed.q == f.q) return false;  // (the relaxation did not settle)
   return withShapesOf(relaxed.q, [&] {
@@ -460,7 +463,7 @@ bool InvariantReducedSimulation::addShapesOf(const CoupledState& f) {
 
 bool InvariantReducedSimulation::withShapesOf(const Eigen::VectorXd& q,
                                               const std::function<bool()>& attempt) {
-  if (basis_->shapes() + 3 > base_basis_->shapes() + max_added_shapes_) return false;
+  if (!mayAddShapes()) return false;
   auto added = std::make_shared<const InvariantRopeBasis>(
       basis_->withShapesOf(q, full_.rope().massMatrix(), full_.ropeLength()));
   if (added->shapes() == basis_->shapes()) return false;
@@ -474,10 +477,13 @@ bool InvariantReducedSimulation::withShapesOf(const Eigen::VectorXd& q,
     basis_ = before;
     return false;
   }
-  retired_halved_steps_ += old->halvedSteps();
-  retired_energy_consistent_steps_ += old->energyConsistentSteps();
+  retireCounts(*old);
   ++basis_additions_;
   return true;
+}
+
+bool InvariantReducedSimulation::mayAddShapes() const {
+  return basis_->shapes() + 3 <= base_basis_->shapes() + max_added_shapes_;
 }
 
 void InvariantReducedSimulation::syncFullRope() {

@@ -173,7 +173,7 @@ class HandOverSimulation : public Simulation {
   virtual double reducedMinStrain() const = 0;
   virtual long reducedHalvedSteps() const { return 0; }
   virtual long reducedEnergyConsistentSteps() const { return 0; }
-  /// Indicator misses the reduced rope absorbed in its basis (default: none).
+  /// Times the reduced rope added a state's shapes to its basis (default: none).
   virtual long reducedBasisAdditions() const { return 0; }
   /// A hand-back tryTakeOver accepted that the reduced rope cannot vouch for beyond the present
   /// (default: none): it is speculative (header).

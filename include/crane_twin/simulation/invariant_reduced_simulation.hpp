@@ -315,9 +315,14 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   bool takeOverOnBasis(const CoupledState& full);
   // The basis with the shapes of full coordinates q added (InvariantRopeBasis::withShapesOf), a
   // new solver on it continuing the old one's stepping, kept where `attempt` (on the new
-  // basis) succeeds; else the old basis and solver, unchanged. False where the shapes would
-  // pass kMaxAddedShapes over base_basis_ or the basis holds q already.
+  // basis) succeeds; else the old basis and solver, unchanged. False where !mayAddShapes() or
+  // the basis holds q already.
   bool withShapesOf(const Eigen::VectorXd& q, const std::function<bool()>& attempt);
+  // Three more shapes stay within max_added_shapes_ over base_basis_ (asked before the work
+  // that would find them).
+  bool mayAddShapes() const;
+  // A replaced solver's step counts, kept for the run's statistics.
+  void retireCounts(const InvariantReducedSolver& replaced);
   // The scene's basis with the axial modes the step resolves (kResolvedAxialOmegaH), at the
   // rope's present length; built once, at the first hand-back trial after a snatch.
   std::shared_ptr<const InvariantRopeBasis> snatchBasis();
