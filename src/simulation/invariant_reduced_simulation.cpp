@@ -94,6 +94,7 @@ HandOverSimulation::Start InvariantReducedSimulation::startReduced(const Coupled
   retired_halved_steps_ = retired_energy_consistent_steps_ = 0;
   basis_additions_ = 0;
   snatched_ = false;
+  release_speculation_ = false;
   const AncfRope& start_rope = full_.rope();
   solver_->refreshLength();  // (the start's rope: the scene's length)
   if (withinGroundMargin(start_rope.position(f.q, start_rope.nodes() - 1)) &&
@@ -112,12 +113,16 @@ HandOverSimulation::Start InvariantReducedSimulation::startReduced(const Coupled
           kStartVelocityTolerance) {
     return Start::ringing;
   }
-  // A release whose axial rebound slackens the rope: the reduced steps before the slack put the
-  // snatch's path off by 1 to 2 cm (docs/model.md "Hand-over to full order").
-  // (Below zero by more than round-off: a stress-free rope's low point is its start's zero.)
+  // A release whose axial rebound slackens the rope (below zero by more than round-off: a
+  // stress-free rope's low point is its start's zero) starts on the snatch basis, speculatively
+  // (header): full order restarted at the start first, so that a take-back is full order's own
+  // run (docs/model.md "Hand-over to full order").
   if (releaseTensionLowPoint(f) < -kLowPointRoundOff * endWeight()) {
     snatched_ = true;
-    return Start::ringing;
+    full_.restartFrom(f);
+    if (!speculative_release_start_ || !tryHandBack()) return Start::ringing;
+    release_speculation_ = true;
+    return Start::reduced;
   }
   // Else the start is handed back at once where the tests pass (a stress-free rope with a load:
   // tryTakeOver, an unloaded rope at rest), and a start the basis does not hold comes back as
@@ -317,6 +322,7 @@ bool InvariantReducedSimulation::tryTakeOver(const CoupledState& f) {
   // Shapes added before (withShapesOf) held a state of then: the hand-back starts from the
   // basis before them. After a snatch, the basis with the axial modes the step resolves
   // (kResolvedAxialOmegaH); a landed start's adapted basis stays as it is.
+  release_speculation_ = false;  // (a hand-back from full order; the start sets it after this)
   if (basis_ != base_basis_) useBasis(base_basis_);
   if (basis_ == scene_basis_ && hasSnatched()) {
     const auto snatch = snatchBasis();
@@ -432,7 +438,13 @@ bool InvariantReducedSimulation::errorTooLarge(long steps) {
   const double e = errorIndicator(f);
   max_indicator_ = std::max(max_indicator_, e);
   // A speculation that rings towards slack is taken back at its bound instead (header).
-  if (speculationRingsTowardsSlack()) return !(e < kSpeculationTolerance);
+  if (speculationRingsTowardsSlack()) {
+    // A release start's speculation (header): its reduced path within the hand-back's bound,
+    // the shapes of a state that misses it by less than the indicator's bound added.
+    if (!release_speculation_) return !(e < kSpeculationTolerance);
+    if (e < kHandBackTolerance) return false;
+    return !(e < kIndicatorTolerance) || !addShapesOf(f);
+  }
   return !(e < kIndicatorTolerance) && !addShapesOf(f);
 }
 

@@ -23,10 +23,16 @@
 //    state's own shapes (addShapesOf: up to kMaxAddedShapes over the basis the run started or
 //    came back on; a hand-back returns to that basis).
 // A start the basis does not carry (the hand-back criteria below fail on the scene's initial
-// state: a velocity given to the payload alone) begins at full order, and so
-// does a release whose axial rebound will slacken the rope (releaseTensionLowPoint below zero:
-// a load released from its held equilibrium past 45 deg), whose path after the slack episode
-// is sensitive to the reduced steps before it. At
+// state: a velocity given to the payload alone) begins at full order. A release whose axial
+// rebound will slacken the rope (releaseTensionLowPoint below zero: a load released from its
+// held equilibrium past 45 deg), whose path after a slack episode is sensitive to the reduced
+// steps before it, starts reduced on the snatch basis (below) but speculatively: full order's
+// start is the checkpoint, and any hand-over within the speculation window (a slack interval, a
+// failed step, an indicator over kIndicatorTolerance, or over kHandBackTolerance where the
+// state's own shapes cannot be added) takes the run back to full order's own run from the
+// start. Released at 45 to 52 deg the T8036's rope touches zero tension and stays reduced; at
+// 55 and 60 deg the speculation is taken back within 0.3 s and the run is full order's, as
+// before (docs/model.md "Hand-over to full order"). At
 // full order, after kHandBackDwell (kQuietHandBackDwell after a start the basis does not hold
 // that forecasts no slack) and then every kHandBackSteps steps (doubling
 // after each refused trial once kHandBackDwell has passed, up to kMaxHandBackInterval), the run
@@ -255,6 +261,10 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   /// Shapes a run may add (kMaxAddedShapes; 0: none, as a comparison: every miss hands over,
   /// every hand-back on the basis alone).
   void setMaxAddedShapes(int shapes);
+  /// Whether a release whose rebound slackens the rope starts reduced as a speculation (true,
+  /// the default; header) or at full order, coming back after the dwell (false, as a
+  /// comparison: the hand-back after a snatch). Asked at initialize().
+  void setSpeculativeReleaseStart(bool speculative) { speculative_release_start_ = speculative; }
   /// Shapes added so far, by indicator misses and hand-backs.
   long basisAdditions() const { return basis_additions_; }
 
@@ -337,10 +347,15 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   /// The run has snatched before: a release start whose rebound slackens the rope, or a run
   /// continued from one that handed over for slack (this run's own slack hand-overs count too).
   bool snatched_ = false;
+  /// The open speculation is the release start's (startReduced): the indicator holds it to
+  /// kHandBackTolerance, adding shapes up to kIndicatorTolerance, instead of
+  /// kSpeculationTolerance; cleared by any later hand-back.
+  bool release_speculation_ = false;
   std::unique_ptr<InvariantReducedSolver> solver_;
   CoupledState state_;
   double max_indicator_ = 0.0;
   int max_added_shapes_ = kMaxAddedShapes;
+  bool speculative_release_start_ = true;
   long basis_additions_ = 0;
   long retired_halved_steps_ = 0, retired_energy_consistent_steps_ = 0;  ///< replaced solvers'
   bool indicator_due_ = false;  ///< an indicator check postponed by a switching episode
