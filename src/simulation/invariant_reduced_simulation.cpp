@@ -115,11 +115,9 @@ HandOverSimulation::Start InvariantReducedSimulation::startReduced(const Coupled
   }
   // A release whose axial rebound slackens the rope (below zero by more than round-off: a
   // stress-free rope's low point is its start's zero) starts on the snatch basis, speculatively
-  // (header): full order restarted at the start first, so that a take-back is full order's own
-  // run (docs/model.md "Hand-over to full order").
+  // (header; docs/model.md "Hand-over to full order"): a take-back is full order's own run.
   if (releaseTensionLowPoint(f) < -kLowPointRoundOff * endWeight()) {
     snatched_ = true;
-    full_.restartFrom(f);
     if (!speculative_release_start_ || !tryHandBack()) return Start::ringing;
     release_speculation_ = true;
     return Start::reduced;
@@ -439,10 +437,10 @@ bool InvariantReducedSimulation::errorTooLarge(long steps) {
   max_indicator_ = std::max(max_indicator_, e);
   // A speculation that rings towards slack is taken back at its bound instead (header).
   if (speculationRingsTowardsSlack()) {
-    // A release start's speculation (header): its reduced path within the hand-back's bound,
-    // the shapes of a state that misses it by less than the indicator's bound added.
+    // A release start's speculation (header): the shapes of a state that misses its bound by
+    // less than the indicator's own added.
     if (!release_speculation_) return !(e < kSpeculationTolerance);
-    if (e < kHandBackTolerance) return false;
+    if (e < kReleaseSpeculationTolerance) return false;
     return !(e < kIndicatorTolerance) || !addShapesOf(f);
   }
   return !(e < kIndicatorTolerance) && !addShapesOf(f);

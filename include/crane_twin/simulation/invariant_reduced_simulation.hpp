@@ -28,8 +28,8 @@
 // held equilibrium past 45 deg), whose path after a slack episode is sensitive to the reduced
 // steps before it, starts reduced on the snatch basis (below) but speculatively: full order's
 // start is the checkpoint, and any hand-over within the speculation window (a slack interval, a
-// failed step, an indicator over kIndicatorTolerance, or over kHandBackTolerance where the
-// state's own shapes cannot be added) takes the run back to full order's own run from the
+// failed step, an indicator over kIndicatorTolerance, or over kReleaseSpeculationTolerance where
+// the state's own shapes cannot be added) takes the run back to full order's own run from the
 // start. Released at 45 to 52 deg the T8036's rope touches zero tension and stays reduced; at
 // 55 and 60 deg the speculation is taken back within 0.3 s and the run is full order's, as
 // before (docs/model.md "Hand-over to full order"). At
@@ -148,6 +148,16 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   /// first read 0.25 mm); on 12.5 t released stress-free from a rigid anchor (60 elements),
   /// which stays within 0.11 mm RMS of full order, it read at most 1.1e-5 m in 12 s.
   static constexpr double kSpeculationTolerance = 1e-4;
+  /// The indicator's bound while a release's speculative start is open [m] (startReduced): a
+  /// reading over it adds the state's shapes (addShapesOf), one over kIndicatorTolerance or one
+  /// whose shapes cannot be added takes the start back. Measured on 53 releases from 45 to
+  /// 60 deg (the T8036 at 120 elements, other loads, lengths, falls and riggings, seeded draws;
+  /// docs/accuracy-vs-time.md "Releases that start reduced"): at 2 mm, no additions, a release
+  /// on four falls read 1.95 mm and ended 1.1 cm rope RMS from full order (7.5 mm started at
+  /// full order); at 0.5 mm (kHandBackTolerance) each run over 1 cm was over it at 1 mm too, and
+  /// shapes were added where the path needed none (two drawn releases 4.6x and 6.0x faster than
+  /// full order against 9.2x and 12x at 1 mm, all four runs within 4 mm rope RMS).
+  static constexpr double kReleaseSpeculationTolerance = 1e-3;
   /// The indicator waits while a point of the rope is stretched less than this fraction of the
   /// end mass's static strain (carries under a tenth of its weight): there the rope's tangent
   /// stiffness (EA's slope in the slack band, the tension's geometric stiffness) nears zero and
@@ -348,7 +358,7 @@ class InvariantReducedSimulation final : public HandOverSimulation,
   /// continued from one that handed over for slack (this run's own slack hand-overs count too).
   bool snatched_ = false;
   /// The open speculation is the release start's (startReduced): the indicator holds it to
-  /// kHandBackTolerance, adding shapes up to kIndicatorTolerance, instead of
+  /// kReleaseSpeculationTolerance, adding shapes up to kIndicatorTolerance, instead of
   /// kSpeculationTolerance; cleared by any later hand-back.
   bool release_speculation_ = false;
   std::unique_ptr<InvariantReducedSolver> solver_;
