@@ -54,7 +54,8 @@ void HandOverSimulation::handOverOrTakeBack(Cause c) {
 }
 
 bool HandOverSimulation::takesBack(Cause c) const {
-  return speculating_ && (rings_towards_slack_ || c == Cause::slack || c == Cause::failure);
+  return speculating_ && (rings_towards_slack_ || c == Cause::slack || c == Cause::failure ||
+                          (c == Cause::indicator && guardTakesBackAtTheIndicator()));
 }
 
 void HandOverSimulation::takeBack(Cause c) {

@@ -435,12 +435,14 @@ bool InvariantReducedSimulation::errorTooLarge(long steps) {
   const CoupledState f = solver_->expand(state_);
   const double e = errorIndicator(f);
   max_indicator_ = std::max(max_indicator_, e);
-  // A speculation that rings towards slack is taken back at its bound instead (header).
-  if (speculationRingsTowardsSlack()) {
-    // A release start's speculation (header): the shapes of a state that misses its bound by
-    // less than the indicator's own added.
-    if (!release_speculation_) return !(e < kSpeculationTolerance);
-    if (e < kReleaseSpeculationTolerance) return false;
+  // A speculation that rings towards slack is taken back at its bound instead; one after a
+  // snatch (a release's start, a guarded hand-back) adds a state's shapes from its own bound
+  // and is taken back where they cannot be added or the indicator's bound is passed (header).
+  if (speculationRingsTowardsSlack() && !release_speculation_) {
+    return !(e < kSpeculationTolerance);
+  }
+  if (speculating() && (release_speculation_ || snatch_indicator_guard_)) {
+    if (e < kSnatchSpeculationTolerance) return false;
     return !(e < kIndicatorTolerance) || !addShapesOf(f);
   }
   return !(e < kIndicatorTolerance) && !addShapesOf(f);

@@ -28,8 +28,8 @@
 //    (the rows already written stay the reduced rope's). Past the window, or at a measured
 //    motion (setMotion), the hand-back is kept and the checkpoint dropped. A guarded hand-back
 //    (handBackGuarded: a reduced rope's after a snatch) keeps the same checkpoint but is taken
-//    back only for a slack episode or a failed step within the window; any other hand-over
-//    keeps it.
+//    back only for a slack episode, a failed step or (guardTakesBackAtTheIndicator) the error
+//    indicator within the window; any other hand-over keeps it.
 // A start the reduced rope does not take over runs at full order from t = 0. The hanging weight
 // W = (m_end + mu L) g and the end mass's static strain m_end g / EA are the scene's.
 #pragma once
@@ -180,10 +180,13 @@ class HandOverSimulation : public Simulation {
   virtual bool handBackIsSpeculative(const CoupledState& /*full*/) const { return false; }
   /// A hand-back that is not speculative but guarded (default: none): its checkpoint is kept as
   /// a speculative one's, and where the run hands over within speculation_window of it for a
-  /// slack episode or a failed step, the hand-back is taken back; any other hand-over keeps it.
-  /// A reduced rope guards what it carries after a snatch, whose next slack episode would
-  /// amplify the basis's small drift (header).
+  /// slack episode, a failed step or (guardTakesBackAtTheIndicator) the error indicator, the
+  /// hand-back is taken back; any other hand-over (a fast hoist, the ground) keeps it. A reduced
+  /// rope guards what it carries after a snatch, whose next slack episode would amplify the
+  /// basis's small drift, and whose drift the indicator finds (header).
   virtual bool handBackGuarded() const { return false; }
+  /// A guarded hand-back is taken back for the error indicator too (default: no).
+  virtual bool guardTakesBackAtTheIndicator() const { return false; }
   /// Checked after every carried reduced step: the rope is slack and full order takes over.
   /// Default: the top tension under slack_tension_fraction of W or, every strain_check_steps
   /// steps, a point's strain under slack_strain_fraction of the end mass's static strain.
