@@ -1171,6 +1171,11 @@ double largestNodeDistance(const AncfRope& rope, const Eigen::VectorXd& a,
 // indicator 5.76 s in.
 const std::vector<std::string> kSwing48 = {"initial.swing_deg=48", "payload.mass=1200",
                                            "rope.length=30", "rope.elements=60"};
+// kSwing48's reduced run as it was measured (above).
+void startAtFullOrderUnguarded(InvariantReducedSimulation& r) {
+  r.setSpeculativeReleaseStart(false);
+  r.setSnatchIndicatorGuard(false);
+}
 }  // namespace
 
 TEST(InvariantReduced, TheQuasiStaticRelaxationSettlesOnlyWhatTheBasisHeldFixed) {
@@ -1182,8 +1187,7 @@ TEST(InvariantReduced, TheQuasiStaticRelaxationSettlesOnlyWhatTheBasisHeldFixed)
   // its velocities and accelerations are as they were.
   // (no shapes added, as the release ran before they were: withShapesOf)
   InvariantReducedSimulation red(withRope("t8036_combination1.yaml", kSwing48, "reduced"));
-  red.setSpeculativeReleaseStart(false);
-  red.setSnatchIndicatorGuard(false);
+  startAtFullOrderUnguarded(red);
   red.setMaxAddedShapes(0);
   red.initialize();
   for (int k = 0; k < 5500; ++k) red.step();
@@ -1265,8 +1269,7 @@ TEST(InvariantReduced, AnIndicatorHandOverAddsNoRingingToTheRopesTension) {
   // (0.44 kN). Relaxed (quasiStaticallyRelaxed), the hand-over adds less than that difference
   // again (0.50 kN).
   InvariantReducedSimulation red(withRope("t8036_combination1.yaml", kSwing48, "reduced"));
-  red.setSpeculativeReleaseStart(false);
-  red.setSnatchIndicatorGuard(false);
+  startAtFullOrderUnguarded(red);
   red.setMaxAddedShapes(0);
   const AgainstFullOrder a = swing48AgainstFullOrder(
       red, 7000, [](const InvariantReducedSimulation& r) { return r.indicatorHandOvers() > 0; });
@@ -1321,14 +1324,12 @@ TEST(InvariantReduced, AReleaseThatSlackenedComesBackOnTheShapesOfFullOrdersStat
   // trial, and its top tension stays within the plain run's difference before its indicator
   // hand-over, its rope within 1 cm RMS, for 20 s.
   InvariantReducedSimulation plain(withRope("t8036_combination1.yaml", kSwing48, "reduced"));
-  plain.setSpeculativeReleaseStart(false);
-  plain.setSnatchIndicatorGuard(false);
+  startAtFullOrderUnguarded(plain);
   plain.setMaxAddedShapes(0);
   const AgainstFullOrder p = swing48AgainstFullOrder(
       plain, 5700, [](const InvariantReducedSimulation& r) { return r.indicatorHandOvers() > 0; });
   InvariantReducedSimulation red(withRope("t8036_combination1.yaml", kSwing48, "reduced"));
-  red.setSpeculativeReleaseStart(false);
-  red.setSnatchIndicatorGuard(false);
+  startAtFullOrderUnguarded(red);
   const int shapes = red.basis().shapes();
   const AgainstFullOrder a = swing48AgainstFullOrder(
       red, 20000, [](const InvariantReducedSimulation& r) { return !r.integratingFullOrder(); });
