@@ -1,6 +1,7 @@
 #include "crane_twin/simulation/hand_over_simulation.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace crane_twin {
 
@@ -16,6 +17,7 @@ void HandOverSimulation::initialize() {
   keepHandBack();
   clear_of_ground_ = true;
   loaded_on_ground_ = false;
+  unloaded_top_.reset();
   std::fill(hand_overs_.begin(), hand_overs_.end(), 0);
   const CoupledState f = full_.initialState();  // the rope at the scene's length
   full_.setState(f);
@@ -122,6 +124,7 @@ bool HandOverSimulation::tryHandBack() {
   full_order_ = false;
   clear_of_ground_ = clearance >= kGroundMargin;
   loaded_on_ground_ = false;
+  unloaded_top_.reset();
   return true;
 }
 
@@ -170,7 +173,7 @@ void HandOverSimulation::step() {
     const bool clear = !withinGroundMargin(end);
     const bool touchdown = !clear && (clear_of_ground_ || !carriesGround());
     clear_of_ground_ = clear;
-    if (touchdown || (carriesGround() && restingRopeUnloaded(end))) {
+    if (touchdown || (carriesGround() && (restingRopeUnloaded(end) || restingRopeDragged(end)))) {
       return handOverOrTakeBack(Cause::ground);
     }
   }
@@ -198,6 +201,25 @@ bool HandOverSimulation::restingRopeUnloaded(const Eigen::Vector3d& end) {
   loaded_on_ground_ = false;
   const Eigen::Vector3d top = reducedNode(0);
   return (end - top).head<2>().norm() > kUnloadedOffsetFraction * reducedLength();
+}
+
+bool HandOverSimulation::restingRopeDragged(const Eigen::Vector3d& end) {
+  const CraneModel& m = full_.model();
+  const double end_weight = m.end_mass * m.scene.gravity;
+  const double end_tension =
+      reducedTopTension() - m.rope.mass_per_length * reducedLength() * m.scene.gravity;
+  if (!full_.ground() || !(full_.ground()->clearance(end) < 0.0) ||
+      end_tension >= SupportedRopeSimulation::kRestingLoadFraction * end_weight) {
+    unloaded_top_.reset();
+    return false;
+  }
+  // The top where the drives put it, r (cos theta, sin theta): the structure's ringing under a
+  // set-down (the shipped one's trolley point swings 16 cm) moves it and drags nothing.
+  const CraneDrives& d = full_.drives();
+  const Eigen::Vector2d top =
+      d.trolleyRadius() * Eigen::Vector2d(std::cos(d.slewAngle()), std::sin(d.slewAngle()));
+  if (!unloaded_top_) unloaded_top_ = top;
+  return (top - *unloaded_top_).norm() > kDragTolerance;
 }
 
 bool HandOverSimulation::slackened() const {
@@ -258,6 +280,7 @@ void HandOverSimulation::continueHandOverFrom(const HandOverSimulation& o) {
   hand_back_countdown_ = o.hand_back_countdown_;
   clear_of_ground_ = o.clear_of_ground_;
   loaded_on_ground_ = o.loaded_on_ground_;
+  unloaded_top_ = o.unloaded_top_;
   taken_back_ = o.taken_back_;
   // (The other run's checkpoint is its own: this run keeps the state it continues.)
   keepHandBack();

@@ -59,6 +59,14 @@ constexpr double kRopeLoadedFraction = 0.2;
 /// (docs/model.md "Hand-over to full order"); a plumb one (a jib's rebound over a set-down load,
 /// 0.16 m off under 61 m) stays reduced.
 constexpr double kUnloadedOffsetFraction = 0.01;
+/// How far the trolley or the slew may move the rope's top over a resting load whose rope does
+/// not carry it (restingRopeDragged) before the run hands over [m]: the basis holds the sag of
+/// the chord it took over, and the error indicator is blind at that rope's unloaded end. A
+/// trolley dragging the top 1.2 m towards 6.8 t resting 2 m off on four falls of the rigid T8036
+/// left the reduced rope 1.1 mm rope RMS from full order after 0.2 m and 2.0 cm after the whole
+/// move, where full order at half the step is 5 mm from itself (docs/model.md "Hand-over to full
+/// order").
+constexpr double kDragTolerance = 0.05;
 /// Round-off of a nodal strain |r_x| - 1 [-] (a few ulps of |r_x| near 1): the hand-back's strain
 /// test allows it below the tension-only law's slack edge, where a stress-free rope sits.
 constexpr double kStrainRoundOff = 1e-12;
@@ -218,6 +226,11 @@ class HandOverSimulation : public Simulation {
   /// where the error indicator is blind. False without a ground; a landed start's rope, never
   /// loaded, is not.
   bool restingRopeUnloaded(const Eigen::Vector3d& end);
+  /// A load resting on the ground (pressed into it) under a rope whose end carries under
+  /// kRestingLoadFraction of the end mass's weight (the error indicator's floor), whose top the
+  /// trolley or the slew moved by more than kDragTolerance since it came to rest so. False
+  /// without a ground; a hoist alone, or the structure ringing, drags nothing.
+  bool restingRopeDragged(const Eigen::Vector3d& end);
   /// Continue the mechanism's state (clock, counters, schedule) of another run of this kind
   /// (a speculation of the other run is kept: its checkpoint stays with it).
   void continueHandOverFrom(const HandOverSimulation& other);
@@ -241,6 +254,9 @@ class HandOverSimulation : public Simulation {
   bool clear_of_ground_ = true;  ///< the reduced payload was kGroundMargin clear at its last step
   bool loaded_on_ground_ =
       false;  ///< the resting load's rope has been loaded (restingRopeUnloaded)
+  /// Where the drives held the rope's top (x, y) when the resting load's rope was first seen
+  /// unloaded from a reduced step on (restingRopeDragged); none while it is loaded or in the air.
+  std::optional<Eigen::Vector2d> unloaded_top_;
   int hand_back_interval_ = 0, hand_back_countdown_ = 0;
 
   // The hand-over for cause c at the end of a reduced step (its state `handOverState(c)`), or
