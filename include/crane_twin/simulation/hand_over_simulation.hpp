@@ -10,7 +10,9 @@
 //    judge slack its own way), and when its error indicator says the basis no longer carries
 //    the state (errorTooLarge);
 //    and when the payload's underside comes down to within kGroundMargin of the ground (a
-//    touchdown; docs/model.md "Ground contact");
+//    touchdown; docs/model.md "Ground contact"), or rests there under a rope that unloads off
+//    its vertical (restingRopeUnloaded) or that the drives drag while it carries nothing of it
+//    (restingRopeDragged);
 //  - at full order: after hand_back_dwell of simulated time (quiet_hand_back_dwell after a quiet
 //    hand-over: a start the basis does not hold that forecasts no slack) and then
 //    every hand_back_steps steps (doubling after each refused trial once hand_back_dwell has
