@@ -180,22 +180,32 @@ void HandOverSimulation::step() {
   if (errorTooLarge(steps_)) handOverOrTakeBack(Cause::indicator);
 }
 
+bool HandOverSimulation::pressedIntoGround(const Eigen::Vector3d& end) const {
+  return full_.ground() && full_.ground()->clearance(end) < 0.0;
+}
+
+double HandOverSimulation::reducedEndTension() const {
+  // The end's share of the top tension: what the hanging rope's weight leaves of it.
+  const CraneModel& m = full_.model();
+  return reducedTopTension() - m.rope.mass_per_length * reducedLength() * m.scene.gravity;
+}
+
+double HandOverSimulation::endWeight() const {
+  return full_.model().end_mass * full_.model().scene.gravity;
+}
+
 bool HandOverSimulation::restingRopeUnloaded(const Eigen::Vector3d& end) {
-  if (!full_.ground() || !(full_.ground()->clearance(end) < 0.0)) {
+  if (!pressedIntoGround(end)) {
     loaded_on_ground_ = false;  // in the air (a lift-off): a landing is a touchdown
     return false;
   }
-  // The end's share of the top tension: what the hanging rope's weight leaves of it.
-  const CraneModel& m = full_.model();
-  const double end_weight = m.end_mass * m.scene.gravity;
-  const double end_tension =
-      reducedTopTension() - m.rope.mass_per_length * reducedLength() * m.scene.gravity;
-  if (end_tension >= kRopeLoadedFraction * end_weight) {
+  const double end_tension = reducedEndTension();
+  if (end_tension >= kRopeLoadedFraction * endWeight()) {
     loaded_on_ground_ = true;
     return false;
   }
   if (!loaded_on_ground_ ||
-      end_tension >= SupportedRopeSimulation::kRestingLoadFraction * end_weight) {
+      end_tension >= SupportedRopeSimulation::kRestingLoadFraction * endWeight()) {
     return false;
   }
   loaded_on_ground_ = false;
@@ -204,12 +214,8 @@ bool HandOverSimulation::restingRopeUnloaded(const Eigen::Vector3d& end) {
 }
 
 bool HandOverSimulation::restingRopeDragged(const Eigen::Vector3d& end) {
-  const CraneModel& m = full_.model();
-  const double end_weight = m.end_mass * m.scene.gravity;
-  const double end_tension =
-      reducedTopTension() - m.rope.mass_per_length * reducedLength() * m.scene.gravity;
-  if (!full_.ground() || !(full_.ground()->clearance(end) < 0.0) ||
-      end_tension >= SupportedRopeSimulation::kRestingLoadFraction * end_weight) {
+  if (!pressedIntoGround(end) ||
+      reducedEndTension() >= SupportedRopeSimulation::kRestingLoadFraction * endWeight()) {
     unloaded_top_.reset();
     return false;
   }

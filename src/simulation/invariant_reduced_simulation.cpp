@@ -128,10 +128,6 @@ HandOverSimulation::Start InvariantReducedSimulation::startReduced(const Coupled
   return tryHandBack() ? Start::reduced : Start::outside_basis;
 }
 
-double InvariantReducedSimulation::endWeight() const {
-  return full_.model().end_mass * full_.rope().gravity().norm();
-}
-
 double InvariantReducedSimulation::releaseTensionLowPoint(const CoupledState& f) const {
   const AncfRope& rope = full_.rope();
   const double m = full_.model().end_mass;

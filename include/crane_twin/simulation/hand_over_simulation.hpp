@@ -233,6 +233,12 @@ class HandOverSimulation : public Simulation {
   /// trolley or the slew moved by more than kDragTolerance since it came to rest so. False
   /// without a ground; a hoist alone, or the structure ringing, drags nothing.
   bool restingRopeDragged(const Eigen::Vector3d& end);
+  /// The payload point presses into the ground (clearance below zero); false without a ground.
+  bool pressedIntoGround(const Eigen::Vector3d& end) const;
+  /// The reduced rope's top tension less its hanging rope's weight: what its end carries [N].
+  double reducedEndTension() const;
+  /// The end mass's weight m_end g [N] (the scale of the hand-over's tension tests).
+  double endWeight() const;
   /// Continue the mechanism's state (clock, counters, schedule) of another run of this kind
   /// (a speculation of the other run is kept: its checkpoint stays with it).
   void continueHandOverFrom(const HandOverSimulation& other);

@@ -318,8 +318,6 @@ class InvariantReducedSimulation final : public HandOverSimulation,
  private:
   void syncFullRope();
   bool riggingSlackInTheAir() const;
-  // The end mass's weight m_end |g| [N] (the scale of the hand-over's tension tests).
-  double endWeight() const;
   // The static correction dq = (K + M)^-1 r at a full-coordinate state, the top's position held
   // (errorIndicator, header), into dq (the rope's coordinates less the top's position); returns
   // its largest node |dq| [m], infinity where the matrix is singular.
