@@ -35,6 +35,20 @@ one() {
       --nodes "$OUT/${name}_fine_nodes.csv" --quiet > "$OUT/${name}_fine.log" 2>&1 ||
       echo "exit=$?" >> "$OUT/${name}_fine.log"
   fi
+  # A run that exits non-zero (a scene refused with exit 2, a failure) gets a row that says so,
+  # with the first such run's exit code and error line, instead of blank columns.
+  local failed="" first=""
+  for m in full reduced pendulum; do
+    if grep -q '^exit=' "$OUT/${name}_$m.log"; then
+      failed+="${failed:+, }$m"
+      [ -n "$first" ] || first="exit $(sed -n 's/^exit=//p' "$OUT/${name}_$m.log" | head -n1): $(
+        grep -m1 -i 'error' "$OUT/${name}_$m.log" | tr '|' '/')"
+    fi
+  done
+  if [ -n "$failed" ]; then
+    printf '%05d| %s | %s | not compared (%s): %s |\n' "$index" "$name" "$dur" "$failed" "$first"
+    return 0
+  fi
   wall() { sed -n 's/^summary: wall_s=\([^ ]*\).*/\1/p' "$OUT/${name}_$1.log"; }
   errs() {
     "$SIM" compare "$OUT/${name}_$1.csv" "$OUT/${name}_full.csv" \
