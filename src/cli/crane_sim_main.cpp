@@ -27,7 +27,7 @@
 #include "crane_twin/simulation/pendulum_crane_simulation.hpp"
 #include "crane_twin/simulation/simulation.hpp"
 #include "crane_twin/simulation/step_tension_peak.hpp"
-#include "crane_twin/structure/modal_analysis.hpp"
+#include "crane_twin/structure/modal_cache.hpp"
 
 namespace ct = crane_twin;
 
@@ -123,7 +123,7 @@ int runModes(const SceneArgs& a, int count, const std::string& part) {
   }
   ct::ModalOptions opt;
   opt.count = count;
-  const ct::ModalBasis b = ct::lowestModes(m.structure->K, m.structure->M, opt);
+  const ct::ModalBasis b = ct::cachedLowestModes(m.structure->K, m.structure->M, opt);
   std::printf("index,frequency_hz\n");
   for (int i = 0; i < count; ++i) std::printf("%d,%.6f\n", i + 1, b.frequencyHz(i));
   return 0;

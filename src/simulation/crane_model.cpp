@@ -9,6 +9,7 @@
 
 #include "crane_twin/io/input_error.hpp"
 #include "crane_twin/structure/geometric_stiffness.hpp"
+#include "crane_twin/structure/modal_cache.hpp"
 
 namespace crane_twin {
 
@@ -76,7 +77,7 @@ void computeStructureModes(CraneModel& m) {
   ModalOptions opt;
   opt.count = sc.structure_modes;
   m.structure_modal_basis =
-      std::make_shared<const ModalBasis>(lowestModes(m.structure->K, m.structure->M, opt));
+      std::make_shared<const ModalBasis>(cachedLowestModes(m.structure->K, m.structure->M, opt));
 }
 
 // The hot spots' stresses as functions of the structure's coordinates (after the modes).

@@ -10,7 +10,7 @@
 #include "crane_twin/loads/wind_loads.hpp"
 #include "crane_twin/rope/swing_direction.hpp"
 #include "crane_twin/simulation/crane_warnings.hpp"
-#include "crane_twin/structure/modal_analysis.hpp"
+#include "crane_twin/structure/modal_cache.hpp"
 #include "crane_twin/structure/structure_support.hpp"
 
 namespace crane_twin {
@@ -40,7 +40,7 @@ std::unique_ptr<RopeSupport> makeRopeSupport(const CraneModel& model) {
   if (!modes) {
     ModalOptions opt;
     opt.count = sc.structure_modes;
-    modes = std::make_shared<const ModalBasis>(lowestModes(st.K, st.M, opt));
+    modes = std::make_shared<const ModalBasis>(cachedLowestModes(st.K, st.M, opt));
   }
   const ModalBasis& b = *modes;
   if (sc.structure_model == StructureModel::modal) {

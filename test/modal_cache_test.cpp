@@ -1,0 +1,219 @@
+// The disk cache of the structure's modes (docs/architecture.md "Mode cache"): a read gives the
+// computed modes bit for bit; another matrix or option misses; a damaged file is recomputed and
+// replaced; an unwritable folder costs only the cache; the folder's choice from the environment;
+// at most kMaxModalCacheFiles files kept.
+#include "crane_twin/structure/modal_cache.hpp"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+
+#include "crane_twin/io/scene.hpp"
+#include "crane_twin/simulation/crane_model.hpp"
+
+using namespace crane_twin;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A fixed-fixed chain of n masses and springs with a soft ground spring at every mass (K
+// positive definite), its masses and stiffnesses graded so the frequencies are distinct.
+void springChain(int n, double k_scale, SparseMatrix& K, SparseMatrix& M) {
+  SparseAssembler KA(n), MA(n);
+  for (int i = 0; i < n; ++i) {
+    const double k = k_scale * (1.0 + 0.01 * i);
+    Eigen::Matrix2d ke;
+    ke << k, -k, -k, k;
+    if (i + 1 < n) KA.add(ke, {i, i + 1});
+    Eigen::Matrix<double, 1, 1> kg, m;
+    kg << 0.1 * k + (i == 0 ? k : 0.0);
+    m << 1.0 + 0.002 * i;
+    KA.add(kg, {i});
+    MA.add(m, {i});
+  }
+  K = KA.build();
+  M = MA.build();
+}
+
+// A fresh folder under the system's temporary one, removed with the fixture.
+class ModalCache : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("crane_twin_mode_cache_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  int files() const {
+    int n = 0;
+    if (!fs::exists(dir_)) return 0;
+    for (const auto& e : fs::directory_iterator(dir_)) n += e.is_regular_file() ? 1 : 0;
+    return n;
+  }
+  fs::path dir_;
+};
+
+void expectBitwiseEqual(const ModalBasis& a, const ModalBasis& b) {
+  ASSERT_EQ(a.omega2.size(), b.omega2.size());
+  ASSERT_EQ(a.phi.rows(), b.phi.rows());
+  ASSERT_EQ(a.phi.cols(), b.phi.cols());
+  EXPECT_TRUE((a.omega2.array() == b.omega2.array()).all());
+  EXPECT_TRUE((a.phi.array() == b.phi.array()).all());
+}
+
+}  // namespace
+
+TEST_F(ModalCache, ASecondRunReadsTheComputedModesBitForBit) {
+  SparseMatrix K, M;
+  springChain(200, 1e4, K, M);
+  ModalOptions opt;
+  opt.count = 12;
+  const ModalBasis direct = lowestModes(K, M, opt);
+  ModalCacheOutcome o;
+  const ModalBasis first = cachedLowestModes(K, M, opt, dir_.string(), &o);
+  EXPECT_EQ(o, ModalCacheOutcome::computed_and_written);
+  EXPECT_EQ(files(), 1);
+  const ModalBasis second = cachedLowestModes(K, M, opt, dir_.string(), &o);
+  EXPECT_EQ(o, ModalCacheOutcome::read);
+  expectBitwiseEqual(first, direct);
+  expectBitwiseEqual(second, direct);
+}
+
+TEST_F(ModalCache, AnotherMatrixOrModeCountMisses) {
+  SparseMatrix K, M, K2, M2;
+  springChain(150, 1e4, K, M);
+  springChain(150, 1e4 * (1.0 + 1e-15), K2, M2);  // values differ in the last bits
+  ModalOptions opt;
+  opt.count = 8;
+  ModalCacheOutcome o;
+  cachedLowestModes(K, M, opt, dir_.string(), &o);
+  ASSERT_EQ(o, ModalCacheOutcome::computed_and_written);
+  const ModalBasis other = cachedLowestModes(K2, M2, opt, dir_.string(), &o);
+  EXPECT_EQ(o, ModalCacheOutcome::computed_and_written);
+  expectBitwiseEqual(other, lowestModes(K2, M2, opt));
+  opt.count = 9;
+  cachedLowestModes(K, M, opt, dir_.string(), &o);
+  EXPECT_EQ(o, ModalCacheOutcome::computed_and_written);
+  opt.count = 8;
+  opt.tolerance = 1e-10;
+  cachedLowestModes(K, M, opt, dir_.string(), &o);
+  EXPECT_EQ(o, ModalCacheOutcome::computed_and_written);
+  EXPECT_EQ(files(), 4);
+}
+
+TEST_F(ModalCache, ADamagedFileIsRecomputedAndReplaced) {
+  SparseMatrix K, M;
+  springChain(120, 1e4, K, M);
+  ModalOptions opt;
+  opt.count = 6;
+  const ModalBasis direct = lowestModes(K, M, opt);
+  ModalCacheOutcome o;
+  cachedLowestModes(K, M, opt, dir_.string(), &o);
+  ASSERT_EQ(files(), 1);
+  const fs::path file = fs::directory_iterator(dir_)->path();
+  const auto size = fs::file_size(file);
+  {  // one byte of a mode shape flipped
+    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>(size / 2));
+    f.put(static_cast<char>(0x5a));
+  }
+  expectBitwiseEqual(cachedLowestModes(K, M, opt, dir_.string(), &o), direct);
+  EXPECT_EQ(o, ModalCacheOutcome::computed_and_written);
+  expectBitwiseEqual(cachedLowestModes(K, M, opt, dir_.string(), &o), direct);
+  EXPECT_EQ(o, ModalCacheOutcome::read) << "the recomputed file replaced the damaged one";
+  fs::resize_file(file, size - 9);  // truncated
+  expectBitwiseEqual(cachedLowestModes(K, M, opt, dir_.string(), &o), direct);
+  EXPECT_EQ(o, ModalCacheOutcome::computed_and_written);
+  EXPECT_EQ(files(), 1) << "no temporary file left behind";
+}
+
+TEST_F(ModalCache, AFolderThatCannotBeWrittenCostsOnlyTheCache) {
+  SparseMatrix K, M;
+  springChain(100, 1e4, K, M);
+  ModalOptions opt;
+  opt.count = 5;
+  fs::create_directories(dir_);
+  std::ofstream(dir_ / "a_file") << "not a folder";
+  ModalCacheOutcome o;
+  const ModalBasis b = cachedLowestModes(K, M, opt, (dir_ / "a_file" / "cache").string(), &o);
+  EXPECT_EQ(o, ModalCacheOutcome::computed_not_written);
+  expectBitwiseEqual(b, lowestModes(K, M, opt));
+  cachedLowestModes(K, M, opt, std::nullopt, &o);
+  EXPECT_EQ(o, ModalCacheOutcome::no_cache);
+}
+
+TEST_F(ModalCache, KeepsAtMostItsLimitOfFiles) {
+  ModalOptions opt;
+  opt.count = 3;
+  for (int i = 0; i < kMaxModalCacheFiles + 4; ++i) {
+    SparseMatrix K, M;
+    springChain(40, 1e4 * (1.0 + 0.1 * i), K, M);
+    cachedLowestModes(K, M, opt, dir_.string());
+  }
+  EXPECT_EQ(files(), kMaxModalCacheFiles);
+  // The newest survived: the last matrix is read, not recomputed.
+  SparseMatrix K, M;
+  springChain(40, 1e4 * (1.0 + 0.1 * (kMaxModalCacheFiles + 3)), K, M);
+  ModalCacheOutcome o;
+  cachedLowestModes(K, M, opt, dir_.string(), &o);
+  EXPECT_EQ(o, ModalCacheOutcome::read);
+}
+
+TEST_F(ModalCache, TheFolderFollowsTheEnvironment) {
+  const auto saved = [](const char* name) -> std::optional<std::string> {
+    const char* v = std::getenv(name);
+    return v ? std::optional<std::string>(v) : std::nullopt;
+  };
+  const auto restore = [](const char* name, const std::optional<std::string>& v) {
+    if (v)
+      ::setenv(name, v->c_str(), 1);
+    else
+      ::unsetenv(name);
+  };
+  const auto cache = saved("CRANE_TWIN_CACHE_DIR"), xdg = saved("XDG_CACHE_HOME"),
+             home = saved("HOME");
+  ::setenv("CRANE_TWIN_CACHE_DIR", "/somewhere/modes", 1);
+  EXPECT_EQ(modalCacheDirectory(), std::optional<std::string>("/somewhere/modes"));
+  ::setenv("CRANE_TWIN_CACHE_DIR", "", 1);
+  EXPECT_EQ(modalCacheDirectory(), std::nullopt) << "set and empty: no cache";
+  ::unsetenv("CRANE_TWIN_CACHE_DIR");
+  ::setenv("XDG_CACHE_HOME", "/xdg", 1);
+  ::setenv("HOME", "/home/crane", 1);
+  EXPECT_EQ(modalCacheDirectory(), std::optional<std::string>("/xdg/crane_twin"));
+  ::unsetenv("XDG_CACHE_HOME");
+  EXPECT_EQ(modalCacheDirectory(), std::optional<std::string>("/home/crane/.cache/crane_twin"));
+  ::unsetenv("HOME");
+  EXPECT_EQ(modalCacheDirectory(), std::nullopt);
+  restore("CRANE_TWIN_CACHE_DIR", cache);
+  restore("XDG_CACHE_HOME", xdg);
+  restore("HOME", home);
+}
+
+// The T8036's 100 modes as the model builds them: the same bits read as computed.
+TEST_F(ModalCache, TheT8036ModelReadsItsModesBitForBit) {
+  const Scene sc =
+      loadScene(std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_combination1.yaml");
+  const char* before = std::getenv("CRANE_TWIN_CACHE_DIR");
+  const std::optional<std::string> saved =
+      before ? std::optional<std::string>(before) : std::nullopt;
+  ::setenv("CRANE_TWIN_CACHE_DIR", "", 1);
+  const CraneModel computed = buildCraneModel(sc);
+  ::setenv("CRANE_TWIN_CACHE_DIR", dir_.c_str(), 1);
+  const CraneModel written = buildCraneModel(sc);
+  ASSERT_EQ(files(), 1);
+  const CraneModel read = buildCraneModel(sc);
+  ASSERT_TRUE(computed.structure_modal_basis && read.structure_modal_basis);
+  EXPECT_EQ(read.structure_modal_basis->phi.cols(), sc.structure_modes);
+  expectBitwiseEqual(*written.structure_modal_basis, *computed.structure_modal_basis);
+  expectBitwiseEqual(*read.structure_modal_basis, *computed.structure_modal_basis);
+  if (saved)
+    ::setenv("CRANE_TWIN_CACHE_DIR", saved->c_str(), 1);
+  else
+    ::unsetenv("CRANE_TWIN_CACHE_DIR");
+}
