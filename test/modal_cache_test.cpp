@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -163,6 +164,22 @@ TEST_F(ModalCache, KeepsAtMostItsLimitOfFiles) {
   ModalCacheOutcome o;
   cachedLowestModes(K, M, opt, dir_.string(), &o);
   EXPECT_EQ(o, ModalCacheOutcome::read);
+}
+
+TEST_F(ModalCache, ATemporaryFileAnHourOldIsRemovedAFreshOneKept) {
+  fs::create_directories(dir_);
+  const fs::path old_tmp = dir_ / ".modes-0123.bin.42.0.tmp",
+                 new_tmp = dir_ / ".modes-4567.bin.43.0.tmp";
+  std::ofstream(old_tmp) << "half a file";
+  std::ofstream(new_tmp) << "being written";
+  fs::last_write_time(old_tmp, fs::file_time_type::clock::now() - std::chrono::hours(2));
+  SparseMatrix K, M;
+  springChain(40, 1e4, K, M);
+  ModalOptions opt;
+  opt.count = 3;
+  cachedLowestModes(K, M, opt, dir_.string());
+  EXPECT_FALSE(fs::exists(old_tmp));
+  EXPECT_TRUE(fs::exists(new_tmp));
 }
 
 TEST_F(ModalCache, TheFolderFollowsTheEnvironment) {

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -173,16 +174,23 @@ bool writeFile(const fs::path& dir, const std::string& name, const std::vector<c
   return true;
 }
 
-// The oldest files (by modification time, which a read renews) beyond kMaxModalCacheFiles go.
+// The oldest files (by modification time, which a read renews) beyond kMaxModalCacheFiles go,
+// and temporary files an hour old (a run stopped while writing one).
 void prune(const fs::path& dir) {
   std::error_code ec;
   std::vector<std::pair<fs::file_time_type, fs::path>> files;
+  const auto stale = fs::file_time_type::clock::now() - std::chrono::hours(1);
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (name.rfind("modes-", 0) != 0 || it->path().extension() != ".bin") continue;
     std::error_code tec;
     const auto t = fs::last_write_time(it->path(), tec);
-    if (!tec) files.emplace_back(t, it->path());
+    if (tec) continue;
+    if (name.rfind(".modes-", 0) == 0 && it->path().extension() == ".tmp") {
+      if (t < stale) fs::remove(it->path(), tec);
+      continue;
+    }
+    if (name.rfind("modes-", 0) != 0 || it->path().extension() != ".bin") continue;
+    files.emplace_back(t, it->path());
   }
   if (static_cast<int>(files.size()) <= kMaxModalCacheFiles) return;
   std::sort(files.begin(), files.end());
