@@ -1,9 +1,14 @@
-// Cost of building the T8036 structure and of its lowest modes (ARPACK shift-invert + CHOLMOD).
+// Cost of building the T8036 structure and of its lowest modes (ARPACK shift-invert + CHOLMOD),
+// solved for or read from the mode cache.
 #include <benchmark/benchmark.h>
+#include <unistd.h>
+
+#include <filesystem>
 
 #include "crane_twin/io/scene.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/structure/modal_analysis.hpp"
+#include "crane_twin/structure/modal_cache.hpp"
 #include "crane_twin/structure/tower_crane_structure.hpp"
 
 using namespace crane_twin;
@@ -31,6 +36,23 @@ static void BM_T8036Modes(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_T8036Modes)->Arg(10)->Arg(100)->ArgName("modes")->Unit(benchmark::kMillisecond);
+
+// The same modes read from the mode cache (docs/architecture.md "Mode cache"): the key's hashes
+// of K and M, the file's read and its content hash, against BM_T8036Modes' solve.
+static void BM_T8036ModesCached(benchmark::State& state) {
+  const TowerCraneStructure s = TowerCraneStructure::build(loadCraneDescription(kCrane));
+  ModalOptions opt;
+  opt.count = static_cast<int>(state.range(0));
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() /
+                                    ("crane_twin_bench_modes_" + std::to_string(::getpid()));
+  cachedLowestModes(s.K, s.M, opt, dir.string());  // (written once)
+  for (auto _ : state) {
+    auto b = cachedLowestModes(s.K, s.M, opt, dir.string());
+    benchmark::DoNotOptimize(b.omega2.data());
+  }
+  std::filesystem::remove_all(dir);
+}
+BENCHMARK(BM_T8036ModesCached)->Arg(100)->ArgName("modes")->Unit(benchmark::kMillisecond);
 
 // What a copy of the T8036 structure costs (its K, M and geometry): what each simulation and
 // forecaster paid when it copied the model with the structure inside, against a copy of the
