@@ -23,8 +23,14 @@ namespace fs = std::filesystem;
 namespace {
 
 // A fixed-fixed chain of n masses and springs with a soft ground spring at every mass (K
-// positive definite), its masses and stiffnesses graded so the frequencies are distinct.
-void springChain(int n, double k_scale, SparseMatrix& K, SparseMatrix& M) {
+// positive definite), its masses and stiffnesses graded so the frequencies are distinct; its
+// lowest `count` modes asked for.
+struct ModeProblem {
+  SparseMatrix K, M;
+  ModalOptions opt;
+};
+
+ModeProblem springChain(int n, double k_scale, int count) {
   SparseAssembler KA(n), MA(n);
   for (int i = 0; i < n; ++i) {
     const double k = k_scale * (1.0 + 0.01 * i);
@@ -37,9 +43,33 @@ void springChain(int n, double k_scale, SparseMatrix& K, SparseMatrix& M) {
     KA.add(kg, {i});
     MA.add(m, {i});
   }
-  K = KA.build();
-  M = MA.build();
+  ModeProblem p;
+  p.K = KA.build();
+  p.M = MA.build();
+  p.opt.count = count;
+  return p;
 }
+
+// An environment variable set or unset for a scope, restored at its end (an ASSERT's early
+// return included).
+class ScopedEnv {
+ public:
+  explicit ScopedEnv(const char* name) : name_(name) {
+    if (const char* v = std::getenv(name)) saved_ = v;
+  }
+  ~ScopedEnv() {
+    if (saved_)
+      ::setenv(name_, saved_->c_str(), 1);
+    else
+      ::unsetenv(name_);
+  }
+  void set(const std::string& value) { ::setenv(name_, value.c_str(), 1); }
+  void unset() { ::unsetenv(name_); }
+
+ private:
+  const char* name_;
+  std::optional<std::string> saved_;
+};
 
 // A fresh folder under the system's temporary one, removed with the fixture.
 class ModalCache : public ::testing::Test {
@@ -71,51 +101,43 @@ void expectBitwiseEqual(const ModalBasis& a, const ModalBasis& b) {
 }  // namespace
 
 TEST_F(ModalCache, ASecondRunReadsTheComputedModesBitForBit) {
-  SparseMatrix K, M;
-  springChain(200, 1e4, K, M);
-  ModalOptions opt;
-  opt.count = 12;
-  const ModalBasis direct = lowestModes(K, M, opt);
+  const ModeProblem p = springChain(200, 1e4, 12);
+  const ModalBasis direct = lowestModes(p.K, p.M, p.opt);
   ModalCacheOutcome o;
-  const ModalBasis first = cachedLowestModes(K, M, opt, dir_.string(), &o);
+  const ModalBasis first = cachedLowestModes(p.K, p.M, p.opt, dir_.string(), &o);
   EXPECT_EQ(o, ModalCacheOutcome::computed_and_written);
   EXPECT_EQ(files(), 1);
-  const ModalBasis second = cachedLowestModes(K, M, opt, dir_.string(), &o);
+  const ModalBasis second = cachedLowestModes(p.K, p.M, p.opt, dir_.string(), &o);
   EXPECT_EQ(o, ModalCacheOutcome::read);
   expectBitwiseEqual(first, direct);
   expectBitwiseEqual(second, direct);
 }
 
 TEST_F(ModalCache, AnotherMatrixOrModeCountMisses) {
-  SparseMatrix K, M, K2, M2;
-  springChain(150, 1e4, K, M);
-  springChain(150, 1e4 * (1.0 + 1e-15), K2, M2);  // values differ in the last bits
-  ModalOptions opt;
-  opt.count = 8;
+  const ModeProblem p = springChain(150, 1e4, 8);
+  const ModeProblem q = springChain(150, 1e4 * (1.0 + 1e-15), 8);  // values differ in the last bits
   ModalCacheOutcome o;
-  cachedLowestModes(K, M, opt, dir_.string(), &o);
+  cachedLowestModes(p.K, p.M, p.opt, dir_.string(), &o);
   ASSERT_EQ(o, ModalCacheOutcome::computed_and_written);
-  const ModalBasis other = cachedLowestModes(K2, M2, opt, dir_.string(), &o);
+  const ModalBasis other = cachedLowestModes(q.K, q.M, q.opt, dir_.string(), &o);
   EXPECT_EQ(o, ModalCacheOutcome::computed_and_written);
-  expectBitwiseEqual(other, lowestModes(K2, M2, opt));
+  expectBitwiseEqual(other, lowestModes(q.K, q.M, q.opt));
+  ModalOptions opt = p.opt;
   opt.count = 9;
-  cachedLowestModes(K, M, opt, dir_.string(), &o);
+  cachedLowestModes(p.K, p.M, opt, dir_.string(), &o);
   EXPECT_EQ(o, ModalCacheOutcome::computed_and_written);
   opt.count = 8;
   opt.tolerance = 1e-10;
-  cachedLowestModes(K, M, opt, dir_.string(), &o);
+  cachedLowestModes(p.K, p.M, opt, dir_.string(), &o);
   EXPECT_EQ(o, ModalCacheOutcome::computed_and_written);
   EXPECT_EQ(files(), 4);
 }
 
 TEST_F(ModalCache, ADamagedFileIsRecomputedAndReplaced) {
-  SparseMatrix K, M;
-  springChain(120, 1e4, K, M);
-  ModalOptions opt;
-  opt.count = 6;
-  const ModalBasis direct = lowestModes(K, M, opt);
+  const ModeProblem p = springChain(120, 1e4, 6);
+  const ModalBasis direct = lowestModes(p.K, p.M, p.opt);
   ModalCacheOutcome o;
-  cachedLowestModes(K, M, opt, dir_.string(), &o);
+  cachedLowestModes(p.K, p.M, p.opt, dir_.string(), &o);
   ASSERT_EQ(files(), 1);
   const fs::path file = fs::directory_iterator(dir_)->path();
   const auto size = fs::file_size(file);
@@ -124,45 +146,39 @@ TEST_F(ModalCache, ADamagedFileIsRecomputedAndReplaced) {
     f.seekp(static_cast<std::streamoff>(size / 2));
     f.put(static_cast<char>(0x5a));
   }
-  expectBitwiseEqual(cachedLowestModes(K, M, opt, dir_.string(), &o), direct);
+  expectBitwiseEqual(cachedLowestModes(p.K, p.M, p.opt, dir_.string(), &o), direct);
   EXPECT_EQ(o, ModalCacheOutcome::computed_and_written);
-  expectBitwiseEqual(cachedLowestModes(K, M, opt, dir_.string(), &o), direct);
+  expectBitwiseEqual(cachedLowestModes(p.K, p.M, p.opt, dir_.string(), &o), direct);
   EXPECT_EQ(o, ModalCacheOutcome::read) << "the recomputed file replaced the damaged one";
   fs::resize_file(file, size - 9);  // truncated
-  expectBitwiseEqual(cachedLowestModes(K, M, opt, dir_.string(), &o), direct);
+  expectBitwiseEqual(cachedLowestModes(p.K, p.M, p.opt, dir_.string(), &o), direct);
   EXPECT_EQ(o, ModalCacheOutcome::computed_and_written);
   EXPECT_EQ(files(), 1) << "no temporary file left behind";
 }
 
 TEST_F(ModalCache, AFolderThatCannotBeWrittenCostsOnlyTheCache) {
-  SparseMatrix K, M;
-  springChain(100, 1e4, K, M);
-  ModalOptions opt;
-  opt.count = 5;
+  const ModeProblem p = springChain(100, 1e4, 5);
   fs::create_directories(dir_);
   std::ofstream(dir_ / "a_file") << "not a folder";
   ModalCacheOutcome o;
-  const ModalBasis b = cachedLowestModes(K, M, opt, (dir_ / "a_file" / "cache").string(), &o);
+  const ModalBasis b = cachedLowestModes(p.K, p.M, p.opt, (dir_ / "a_file" / "cache").string(), &o);
   EXPECT_EQ(o, ModalCacheOutcome::computed_not_written);
-  expectBitwiseEqual(b, lowestModes(K, M, opt));
-  cachedLowestModes(K, M, opt, std::nullopt, &o);
+  expectBitwiseEqual(b, lowestModes(p.K, p.M, p.opt));
+  cachedLowestModes(p.K, p.M, p.opt, std::nullopt, &o);
   EXPECT_EQ(o, ModalCacheOutcome::no_cache);
 }
 
 TEST_F(ModalCache, KeepsAtMostItsLimitOfFiles) {
-  ModalOptions opt;
-  opt.count = 3;
+  const auto chain = [](int i) { return springChain(40, 1e4 * (1.0 + 0.1 * i), 3); };
   for (int i = 0; i < kMaxModalCacheFiles + 4; ++i) {
-    SparseMatrix K, M;
-    springChain(40, 1e4 * (1.0 + 0.1 * i), K, M);
-    cachedLowestModes(K, M, opt, dir_.string());
+    const ModeProblem p = chain(i);
+    cachedLowestModes(p.K, p.M, p.opt, dir_.string());
   }
   EXPECT_EQ(files(), kMaxModalCacheFiles);
   // The newest survived: the last matrix is read, not recomputed.
-  SparseMatrix K, M;
-  springChain(40, 1e4 * (1.0 + 0.1 * (kMaxModalCacheFiles + 3)), K, M);
+  const ModeProblem last = chain(kMaxModalCacheFiles + 3);
   ModalCacheOutcome o;
-  cachedLowestModes(K, M, opt, dir_.string(), &o);
+  cachedLowestModes(last.K, last.M, last.opt, dir_.string(), &o);
   EXPECT_EQ(o, ModalCacheOutcome::read);
 }
 
@@ -173,55 +189,36 @@ TEST_F(ModalCache, ATemporaryFileAnHourOldIsRemovedAFreshOneKept) {
   std::ofstream(old_tmp) << "half a file";
   std::ofstream(new_tmp) << "being written";
   fs::last_write_time(old_tmp, fs::file_time_type::clock::now() - std::chrono::hours(2));
-  SparseMatrix K, M;
-  springChain(40, 1e4, K, M);
-  ModalOptions opt;
-  opt.count = 3;
-  cachedLowestModes(K, M, opt, dir_.string());
+  const ModeProblem p = springChain(40, 1e4, 3);
+  cachedLowestModes(p.K, p.M, p.opt, dir_.string());
   EXPECT_FALSE(fs::exists(old_tmp));
   EXPECT_TRUE(fs::exists(new_tmp));
 }
 
 TEST_F(ModalCache, TheFolderFollowsTheEnvironment) {
-  const auto saved = [](const char* name) -> std::optional<std::string> {
-    const char* v = std::getenv(name);
-    return v ? std::optional<std::string>(v) : std::nullopt;
-  };
-  const auto restore = [](const char* name, const std::optional<std::string>& v) {
-    if (v)
-      ::setenv(name, v->c_str(), 1);
-    else
-      ::unsetenv(name);
-  };
-  const auto cache = saved("CRANE_TWIN_CACHE_DIR"), xdg = saved("XDG_CACHE_HOME"),
-             home = saved("HOME");
-  ::setenv("CRANE_TWIN_CACHE_DIR", "/somewhere/modes", 1);
+  ScopedEnv cache("CRANE_TWIN_CACHE_DIR"), xdg("XDG_CACHE_HOME"), home("HOME");
+  cache.set("/somewhere/modes");
   EXPECT_EQ(modalCacheDirectory(), std::optional<std::string>("/somewhere/modes"));
-  ::setenv("CRANE_TWIN_CACHE_DIR", "", 1);
+  cache.set("");
   EXPECT_EQ(modalCacheDirectory(), std::nullopt) << "set and empty: no cache";
-  ::unsetenv("CRANE_TWIN_CACHE_DIR");
-  ::setenv("XDG_CACHE_HOME", "/xdg", 1);
-  ::setenv("HOME", "/home/crane", 1);
+  cache.unset();
+  xdg.set("/xdg");
+  home.set("/home/crane");
   EXPECT_EQ(modalCacheDirectory(), std::optional<std::string>("/xdg/crane_twin"));
-  ::unsetenv("XDG_CACHE_HOME");
+  xdg.unset();
   EXPECT_EQ(modalCacheDirectory(), std::optional<std::string>("/home/crane/.cache/crane_twin"));
-  ::unsetenv("HOME");
+  home.unset();
   EXPECT_EQ(modalCacheDirectory(), std::nullopt);
-  restore("CRANE_TWIN_CACHE_DIR", cache);
-  restore("XDG_CACHE_HOME", xdg);
-  restore("HOME", home);
 }
 
 // The T8036's 100 modes as the model builds them: the same bits read as computed.
 TEST_F(ModalCache, TheT8036ModelReadsItsModesBitForBit) {
   const Scene sc =
       loadScene(std::string(CRANE_TWIN_SOURCE_DIR) + "/config/scenes/t8036_combination1.yaml");
-  const char* before = std::getenv("CRANE_TWIN_CACHE_DIR");
-  const std::optional<std::string> saved =
-      before ? std::optional<std::string>(before) : std::nullopt;
-  ::setenv("CRANE_TWIN_CACHE_DIR", "", 1);
+  ScopedEnv cache("CRANE_TWIN_CACHE_DIR");
+  cache.set("");
   const CraneModel computed = buildCraneModel(sc);
-  ::setenv("CRANE_TWIN_CACHE_DIR", dir_.c_str(), 1);
+  cache.set(dir_.string());
   const CraneModel written = buildCraneModel(sc);
   ASSERT_EQ(files(), 1);
   const CraneModel read = buildCraneModel(sc);
@@ -229,8 +226,4 @@ TEST_F(ModalCache, TheT8036ModelReadsItsModesBitForBit) {
   EXPECT_EQ(read.structure_modal_basis->phi.cols(), sc.structure_modes);
   expectBitwiseEqual(*written.structure_modal_basis, *computed.structure_modal_basis);
   expectBitwiseEqual(*read.structure_modal_basis, *computed.structure_modal_basis);
-  if (saved)
-    ::setenv("CRANE_TWIN_CACHE_DIR", saved->c_str(), 1);
-  else
-    ::unsetenv("CRANE_TWIN_CACHE_DIR");
 }

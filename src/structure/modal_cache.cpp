@@ -22,9 +22,11 @@ namespace {
 
 constexpr char kMagic[8] = {'C', 'T', 'M', 'O', 'D', 'E', 'S', '1'};
 
-// FNV-1a, 64 bits: h = (h xor byte) * 1099511628211 over the bytes, from an offset basis.
+// FNV-1a, 64 bits: h = (h xor byte) * 1099511628211 over the bytes, from an offset basis (the
+// standard one unless given).
+constexpr std::uint64_t kFnvOffsetBasis = 14695981039346656037ULL;
 struct Fnv1a {
-  std::uint64_t h;
+  std::uint64_t h = kFnvOffsetBasis;
   void add(const void* data, std::size_t bytes) {
     const auto* p = static_cast<const unsigned char*>(data);
     for (std::size_t i = 0; i < bytes; ++i) h = (h ^ p[i]) * 1099511628211ULL;
@@ -42,7 +44,7 @@ struct Key {
 
 // Both hashes over the same bytes: the standard offset basis and a second one.
 struct KeyHash {
-  Fnv1a a{14695981039346656037ULL}, b{0x84222325cbf29ce4ULL};
+  Fnv1a a, b{0x84222325cbf29ce4ULL};
   void add(const void* data, std::size_t bytes) {
     a.add(data, bytes);
     b.add(data, bytes);
@@ -107,7 +109,7 @@ std::vector<char> serialize(const Key& key, const ModalBasis& b) {
   put(&nev, sizeof nev);
   put(b.omega2.data(), sizeof(double) * nev);
   put(b.phi.data(), sizeof(double) * n * nev);
-  Fnv1a h{14695981039346656037ULL};
+  Fnv1a h;
   h.add(out.data(), out.size());
   put(&h.h, sizeof h.h);
   return out;
@@ -118,7 +120,7 @@ std::optional<ModalBasis> deserialize(const std::vector<char>& in, const Key& ke
   const std::size_t head = sizeof kMagic + 2 * sizeof(std::uint64_t) + 2 * sizeof(std::int64_t);
   const std::size_t body = sizeof(double) * static_cast<std::size_t>(nev * (n + 1));
   if (in.size() != head + body + sizeof(std::uint64_t)) return std::nullopt;
-  Fnv1a h{14695981039346656037ULL};
+  Fnv1a h;
   h.add(in.data(), head + body);
   std::uint64_t stored;
   std::memcpy(&stored, in.data() + head + body, sizeof stored);
@@ -126,10 +128,14 @@ std::optional<ModalBasis> deserialize(const std::vector<char>& in, const Key& ke
   Key k;
   std::int64_t fn, fnev;
   const char* p = in.data() + sizeof kMagic;
-  std::memcpy(&k.a, p, sizeof k.a);
-  std::memcpy(&k.b, p + 8, sizeof k.b);
-  std::memcpy(&fn, p + 16, sizeof fn);
-  std::memcpy(&fnev, p + 24, sizeof fnev);
+  const auto take = [&p](void* to, std::size_t bytes) {
+    std::memcpy(to, p, bytes);
+    p += bytes;
+  };
+  take(&k.a, sizeof k.a);
+  take(&k.b, sizeof k.b);
+  take(&fn, sizeof fn);
+  take(&fnev, sizeof fnev);
   if (!(k == key) || fn != n || fnev != nev) return std::nullopt;
   ModalBasis b;
   b.omega2.resize(nev);
