@@ -53,14 +53,16 @@ double constraintError(const RopeSupport& support, const CoupledState& s) {
 
 bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSettings& newton,
                 double h, const RopeIncrement& increment, CoupledState& s, std::string& why,
-                const Eigen::VectorXd* support_means_z0, NewtonMemory* memory) {
+                NewtonWorkspace& workspace, const Eigen::VectorXd* support_means_z0,
+                NewtonMemory* memory) {
   const int m = support.size();
   NewtonWeights w;
   w.mass = ga.massWeight();
   w.damping = ga.gamma * h;
   w.stiffness = ga.beta * h * h;
   const double bh2 = w.stiffness;
-  const CoupledState start = s;
+  workspace.start = s;  // (assigned into the workspace's storage: no allocation once sized)
+  const CoupledState& start = workspace.start;
   ga.predict(h, start.qdd, start.a, s.q, s.v);
   if (m > 0) ga.predict(h, start.zdd, start.za, s.z, s.zd);
   w.G = support_means_z0 ? support.setIterationWeights(1.0, ga.beta * h, 0.5 * bh2)

@@ -4,7 +4,8 @@ namespace crane_twin {
 
 bool tensionOnlyStep(const TensionOnlyRope& rope, double tolerance, bool hoisting,
                      TensionOnlySwitching& memory, CoupledState& s, double h, std::string& why) {
-  const CoupledState start = s;
+  memory.start = s;  // (into the memory's storage: no allocation once sized)
+  const CoupledState& start = memory.start;
   if (!memory.switching) {
     if (rope.generalized_alpha_step(s, h, why)) {
       const double switch_error = rope.switch_work_error(start.q, s.q);

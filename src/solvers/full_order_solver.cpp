@@ -492,7 +492,8 @@ bool FullOrderSolver::generalizedAlphaStep(CoupledState& s, double h, std::strin
   // its geometry, not its law).
   step_looks_for_switches_ = rankOneTermsPossible() &&
                              (payloadTouchesAt(s.q) || axialStrainsAt(s.q).minCoeff() < kSlackBand);
-  return newtonStep(ga_, support_, newton_, h, increment, s, why, nullptr, &newton_memory_);
+  return newtonStep(ga_, support_, newton_, h, increment, s, why, newton_workspace_, nullptr,
+                    &newton_memory_);
 }
 
 void FullOrderSolver::assembledMatrixAt(const CoupledState& x, const NewtonWeights& w, double h,
@@ -662,7 +663,7 @@ bool FullOrderSolver::energyConsistentStep(CoupledState& s, double h, std::strin
     return solveIncrement(rhs, dq, dmu, reason, !w.keep_matrix);
   };
   const Eigen::VectorXd& z0 = start.z;
-  if (!newtonStep(scheme, support_, newton_, h, increment, s, why,
+  if (!newtonStep(scheme, support_, newton_, h, increment, s, why, newton_workspace_,
                   support_.size() > 0 ? &z0 : nullptr)) {
     s = start;
     return false;

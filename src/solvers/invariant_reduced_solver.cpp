@@ -19,8 +19,9 @@ using Matrix3X = Eigen::Matrix<double, 3, Eigen::Dynamic>;
 // (S (x) I3) x as a 3 x m matrix product: vec(X S) for x = vec(X), S symmetric m x m.
 Eigen::VectorXd kronTimes(const Eigen::MatrixXd& S, const Eigen::VectorXd& x) {
   const Eigen::Map<const Matrix3X> X(x.data(), 3, S.rows());
-  const Matrix3X Y = X * S;
-  return Eigen::Map<const Eigen::VectorXd>(Y.data(), Y.size());
+  Eigen::VectorXd y(3 * S.rows());
+  Eigen::Map<Matrix3X>(y.data(), 3, S.rows()).noalias() = X * S;  // (into y: one allocation)
+  return y;
 }
 
 constexpr int kMaxHalvings = 6;
@@ -465,9 +466,9 @@ void InvariantReducedSolver::step(CoupledState& s) {
   last_step_length_ = L_;
   if (!halves_failed_steps_) {
     std::string why;
-    const CoupledState start = s;
+    step_start_ = s;  // (into the member's storage: no allocation once sized)
     if (tryStep(s, h_, why)) return;
-    s = start;
+    s = step_start_;
     throw NumericalFailure(why);
   }
   stepWithHalving(
@@ -565,11 +566,14 @@ bool InvariantReducedSolver::newton(
       return false;
     }
     ++iterations;
-    Eigen::VectorXd rhs(n + 3);
+    // (the right-hand side and the solution in members' storage: no allocation once sized)
+    Eigen::VectorXd& rhs = newton_rhs_;
+    Eigen::VectorXd& dx = newton_dx_;
+    rhs.resize(n + 3);
     rhs.head(n) = -w.stiffness * residual(x);
     rhs.head<3>() -= w.stiffness * x.lambda;
     rhs.tail<3>() = rc;
-    const Eigen::VectorXd dx = lu_.solve(rhs);
+    dx = lu_.solve(rhs);
     dq = dx.head(n);
     dmu = dx.tail<3>();
     residual_min_stretch = last_force_min_stretch_;
@@ -589,8 +593,8 @@ bool InvariantReducedSolver::newton(
   };
   last_force_min_stretch_ = -1.0;  // set by force(): a residual without it records no bound
   // (the energy-consistent steps, secant_from set, neither use nor set the rate)
-  const bool ok = newtonStep(scheme, support_, newton_, h, increment, s, why, support_means_z0,
-                             secant_from ? nullptr : &newton_memory_);
+  const bool ok = newtonStep(scheme, support_, newton_, h, increment, s, why, newton_workspace_,
+                             support_means_z0, secant_from ? nullptr : &newton_memory_);
   // A lower bound of the end state's smallest stretch: the last residual's, less what the last
   // correction can change it by (|dr_x| <= sum_k |psi_k'| |da_k| / L <= sqrt(3) S |dq|_inf / L).
   if (ok && residual_min_stretch > 0.0) {

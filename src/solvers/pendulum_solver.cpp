@@ -197,7 +197,7 @@ bool PendulumSolver::tryStep(CoupledState& s, double h, std::string& why) {
     dmu = dx.tail<3>();
     return true;
   };
-  return newtonStep(ga_, support_, newton_, h, increment, s, why);
+  return newtonStep(ga_, support_, newton_, h, increment, s, why, newton_workspace_);
 }
 
 double PendulumSolver::energy(const CoupledState& s) const {

@@ -47,6 +47,10 @@ StructureSupportBase::StructureSupportBase(const TowerCraneStructure& s, double 
 
 // r_p = R(theta) (X_p(s) + B(s) T z): D = R B T.
 void StructureSupportBase::setPose(double theta, double radius) {
+  // (a function of theta and the radius alone: the same pose leaves r_0, D and the version)
+  if (pose_version_ > 0 && theta == pose_theta_ && radius == pose_radius_) return;
+  pose_theta_ = theta;
+  pose_radius_ = radius;
   const std::vector<NodeLoad> w = structure_.trolleyWeights(radius);
   const Eigen::Matrix3d R = slewRotation(theta);
   r0_ = R * trolleyPoint(structure_, radius);

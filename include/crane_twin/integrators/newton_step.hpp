@@ -108,6 +108,12 @@ struct NewtonWeights {
   bool keep_foreseen_from_last_step = false;
 };
 
+/// Storage a solver keeps for newtonStep from step to step, so that a step's copy of its start
+/// reuses it instead of allocating (contents are scratch between calls).
+struct NewtonWorkspace {
+  CoupledState start;  ///< the step's start
+};
+
 /// The rope's linear solve at the iterate s: assemble its rows of the system above with the
 /// weights w (r_q from s) and the condensed constraint residual rc = r_c + D A_z^-1 r_z, and
 /// return dq and dmu. False, with the reason in `why`, where the matrix is singular.
@@ -126,10 +132,12 @@ using RopeIncrement =
 /// K_z z_m the support's elastic work is its energy change and C_z at the step's own mean
 /// velocity only dissipates (docs/model.md "Energy-consistent step"); its iteration matrix is
 /// then M_z + beta h C_z + beta h^2 / 2 K_z. With `memory`, the first correction may keep its
-/// matrix (see above) and the step's contraction is recorded there.
+/// matrix (see above) and the step's contraction is recorded there. `workspace` holds the step's
+/// start meanwhile.
 bool newtonStep(const GeneralizedAlpha& ga, RopeSupport& support, const NewtonSettings& newton,
                 double h, const RopeIncrement& increment, CoupledState& s, std::string& why,
-                const Eigen::VectorXd* support_means_z0 = nullptr, NewtonMemory* memory = nullptr);
+                NewtonWorkspace& workspace, const Eigen::VectorXd* support_means_z0 = nullptr,
+                NewtonMemory* memory = nullptr);
 
 /// The support's rows eliminated from a linear solve (its Schur complement): returns the
 /// condensed constraint row rc + D A_z^-1 r_z and A_z^-1 r_z in Azr, for the weights last set

@@ -49,6 +49,9 @@ struct TensionOnlySwitching {
   bool switching = false;       ///< the last step was energy-consistent and switched
   double energy_created = 0.0;  ///< created by the accepted generalized-alpha steps [J]
   long energy_consistent_steps = 0;
+  /// Workspace: the step's start, its storage reused from step to step (no allocation once
+  /// sized; scratch between steps).
+  CoupledState start;
 };
 
 /// One step of size h by the rule above. `tolerance` [J]: the switch error and created energy

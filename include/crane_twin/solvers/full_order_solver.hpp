@@ -211,6 +211,7 @@ class FullOrderSolver {
   // matrix where it foresees convergence and the law kept its branches (lawBranchesAsAtMatrix).
   // The energy-consistent steps, all across slack/taut switches, do not use it.
   NewtonMemory newton_memory_;
+  NewtonWorkspace newton_workspace_;  ///< newtonStep's storage (scratch between steps)
   // The iterate at which a generalized-alpha step last assembled A_ (the matrix a first
   // correction keeps; the energy-consistent step's and the start's solves do not set it).
   Eigen::VectorXd matrix_q_;

@@ -252,6 +252,9 @@ class InvariantReducedSolver {
   // The generalized-alpha steps' contraction rate (newton_step.hpp), forgotten with every
   // factorisation and after every energy-consistent step.
   NewtonMemory newton_memory_;
+  NewtonWorkspace newton_workspace_;        ///< newtonStep's storage (scratch between steps)
+  CoupledState step_start_;                 ///< step()'s copy of its start (scratch between steps)
+  Eigen::VectorXd newton_rhs_, newton_dx_;  ///< a correction's system (scratch between calls)
   long newton_iterations_ = 0, steps_ = 0;
   // Tension-only stepping (as FullOrderSolver's).
   TensionOnlySwitching switching_;

@@ -80,6 +80,7 @@ class PendulumSolver {
   GeneralizedAlpha ga_;
   double h_;
   NewtonSettings newton_;
+  NewtonWorkspace newton_workspace_;  ///< newtonStep's storage (scratch between steps)
   double damping_ = 0.0;
   std::optional<GroundContact> ground_;
   long halved_steps_ = 0;

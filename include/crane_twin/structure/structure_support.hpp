@@ -77,8 +77,9 @@ class StructureSupportBase : public RopeSupport {
   StructureSupportBase(const TowerCraneStructure& s, double trolley_radius, double slew_angle,
                        const Eigen::MatrixXd* modes);
   const TowerCraneStructure& structure_;
-  Eigen::MatrixXd modes_;  ///< T = Phi (modal), empty for T = I
-  int pose_version_ = 0;   ///< bumped by setPose (D changed)
+  Eigen::MatrixXd modes_;                        ///< T = Phi (modal), empty for T = I
+  int pose_version_ = 0;                         ///< bumped by setPose (D changed)
+  double pose_theta_ = 0.0, pose_radius_ = 0.0;  ///< [rad], [m] of the last setPose
   Eigen::Vector3d r0_;
   Eigen::Matrix<double, 3, Eigen::Dynamic> D_, cab_, tip_;
   Eigen::VectorXd euler_, centrifugal_;  ///< T^T M r_theta, T^T M c (empty: loads off)
