@@ -186,9 +186,19 @@ Eigen::VectorXd ModalStructureSupport::internalForce(const Eigen::VectorXd& z,
   return f;
 }
 
+// A_z = a I + c 2 zeta Omega + k Omega^2 (diagonal), G = D A_z^-1 D^T; both kept while the
+// weights and the pose are those they were computed for (a run's steps share them).
 Eigen::Matrix3d ModalStructureSupport::setIterationWeights(double a, double c, double k) {
+  if (a == weight_a_ && c == weight_c_ && k == weight_k_ && G_pose_version_ == pose_version_) {
+    return G_;
+  }
   diagonal_ = Eigen::VectorXd::Constant(omega2_.size(), a) + c * damping_ + k * omega2_;
-  return D_ * diagonal_.cwiseInverse().asDiagonal() * D_.transpose();
+  G_ = D_ * diagonal_.cwiseInverse().asDiagonal() * D_.transpose();
+  weight_a_ = a;
+  weight_c_ = c;
+  weight_k_ = k;
+  G_pose_version_ = pose_version_;
+  return G_;
 }
 
 double ModalStructureSupport::energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const {

@@ -120,8 +120,11 @@ class ModalStructureSupport final : public StructureSupportBase {
   const Eigen::VectorXd& dampingTerms() const { return damping_; }
 
  private:
-  Eigen::VectorXd omega2_, damping_;  ///< Omega^2, 2 zeta Omega
-  Eigen::VectorXd diagonal_;          ///< A_z (diagonal)
+  Eigen::VectorXd omega2_, damping_;                            ///< Omega^2, 2 zeta Omega
+  Eigen::VectorXd diagonal_;                                    ///< A_z (diagonal)
+  double weight_a_ = -1.0, weight_c_ = -1.0, weight_k_ = -1.0;  ///< A_z's weights, cached
+  int G_pose_version_ = -1;                                     ///< pose G_ was computed for
+  Eigen::Matrix3d G_ = Eigen::Matrix3d::Zero();
 };
 
 class FullStructureSupport final : public StructureSupportBase {
