@@ -210,3 +210,44 @@ TEST(SlewingLoads, AStepFractionHoldsTheSupportAtThePoseOfThatTime) {
     EXPECT_LT((s->point(z) - end).norm(), 1e-12);
   }
 }
+
+TEST(SlewingLoads, IterationWeightsFollowTheWeightsAndThePose) {
+  // The modal support keeps G = D A_z^-1 D^T (A_z = a I + c 2 zeta Omega + k Omega^2) while the
+  // weights and the pose are those it was computed for: every answer must be the one computed
+  // here from the support's point rows (pointMotion of unit coordinates) and its frequencies,
+  // whatever came before it, a repeated pose or weight set included.
+  const CraneModel m = t8036({});
+  const TowerCraneStructure& st = *m.structure;
+  ModalOptions o;
+  o.count = 10;
+  const ModalBasis b = lowestModes(st.K, st.M, o);
+  ModalStructureSupport s(st, b, 0.01, 40.0, 0.3);
+  const auto expected = [&](double a, double c, double k, Eigen::VectorXd& diag) {
+    diag = Eigen::VectorXd::Constant(s.size(), a) + c * s.dampingTerms() + k * s.omega2();
+    Eigen::Matrix<double, 3, Eigen::Dynamic> D(3, s.size());
+    for (int j = 0; j < s.size(); ++j) D.col(j) = s.pointMotion(Eigen::VectorXd::Unit(s.size(), j));
+    return Eigen::Matrix3d(D * diag.cwiseInverse().asDiagonal() * D.transpose());
+  };
+  struct Case {
+    double a, c, k, theta, radius;
+  };
+  const double h = 1e-3;
+  const std::vector<Case> cases = {{1.0, 0.5 * h, 0.25 * h * h, 0.3, 40.0},
+                                   {1.0, 0.5 * h, 0.25 * h * h, 0.3, 40.0},
+                                   {1.2, 0.6 * h, 0.3 * h * h, 0.3, 40.0},
+                                   {1.2, 0.6 * h, 0.3 * h * h, 1.1, 25.0},
+                                   {1.0, 0.5 * h, 0.25 * h * h, 1.1, 25.0},
+                                   {1.0, 0.5 * h, 0.25 * h * h, 0.3, 40.0},
+                                   {1.0, 0.0, 0.0, 0.3, 40.0},
+                                   {1.0, 0.0, 0.0, 0.3, 40.0}};
+  const Eigen::VectorXd r = Eigen::VectorXd::LinSpaced(s.size(), 1.0, 2.0);
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const Case& c = cases[i];
+    s.setPose(c.theta, c.radius);
+    const Eigen::Matrix3d G = s.setIterationWeights(c.a, c.c, c.k);
+    Eigen::VectorXd diag;
+    const Eigen::Matrix3d G0 = expected(c.a, c.c, c.k, diag);
+    EXPECT_LT((G - G0).norm(), 1e-12 * G0.norm()) << "case " << i;
+    EXPECT_LT((s.solve(r) - r.cwiseQuotient(diag)).norm(), 1e-12 * r.norm()) << "case " << i;
+  }
+}
