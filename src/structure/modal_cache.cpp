@@ -140,8 +140,8 @@ std::optional<ModalBasis> deserialize(const std::vector<char>& in, const Key& ke
   ModalBasis b;
   b.omega2.resize(nev);
   b.phi.resize(n, nev);
-  std::memcpy(b.omega2.data(), in.data() + head, sizeof(double) * nev);
-  std::memcpy(b.phi.data(), in.data() + head + sizeof(double) * nev, sizeof(double) * n * nev);
+  take(b.omega2.data(), sizeof(double) * nev);
+  take(b.phi.data(), sizeof(double) * n * nev);
   if (!b.omega2.allFinite() || !b.phi.allFinite()) return std::nullopt;
   return b;
 }

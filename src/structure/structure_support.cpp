@@ -68,6 +68,18 @@ void StructureSupportBase::setPose(double theta, double radius) {
   ++pose_version_;
 }
 
+const Eigen::Matrix3d* StructureSupportBase::keptCompliance(double a, double c, double k) const {
+  const KeptCompliance& g = kept_compliance_;
+  const bool kept = a == g.a && c == g.c && k == g.k && g.pose_version == pose_version_;
+  return kept ? &g.G : nullptr;
+}
+
+const Eigen::Matrix3d& StructureSupportBase::keepCompliance(double a, double c, double k,
+                                                            const Eigen::Matrix3d& G) {
+  kept_compliance_ = {a, c, k, pose_version_, G};
+  return kept_compliance_.G;
+}
+
 void slewingFields(const TowerCraneStructure& s, Eigen::VectorXd& r_theta, Eigen::VectorXd& c) {
   std::vector<bool> turns(s.nodes.size(), false);
   for (const StructureMember& m : s.members) {
@@ -186,19 +198,11 @@ Eigen::VectorXd ModalStructureSupport::internalForce(const Eigen::VectorXd& z,
   return f;
 }
 
-// A_z = a I + c 2 zeta Omega + k Omega^2 (diagonal), G = D A_z^-1 D^T; both kept while the
-// weights and the pose are those they were computed for (a run's steps share them).
+// A_z = a I + c 2 zeta Omega + k Omega^2 (diagonal), G = D A_z^-1 D^T (kept: keptCompliance).
 Eigen::Matrix3d ModalStructureSupport::setIterationWeights(double a, double c, double k) {
-  if (a == weight_a_ && c == weight_c_ && k == weight_k_ && G_pose_version_ == pose_version_) {
-    return G_;
-  }
+  if (const Eigen::Matrix3d* G = keptCompliance(a, c, k)) return *G;
   diagonal_ = Eigen::VectorXd::Constant(omega2_.size(), a) + c * damping_ + k * omega2_;
-  G_ = D_ * diagonal_.cwiseInverse().asDiagonal() * D_.transpose();
-  weight_a_ = a;
-  weight_c_ = c;
-  weight_k_ = k;
-  G_pose_version_ = pose_version_;
-  return G_;
+  return keepCompliance(a, c, k, D_ * diagonal_.cwiseInverse().asDiagonal() * D_.transpose());
 }
 
 double ModalStructureSupport::energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const {
@@ -228,12 +232,12 @@ Eigen::VectorXd FullStructureSupport::internalForce(const Eigen::VectorXd& z,
   return f;
 }
 
+// A_z = a M + c (alpha M + beta K) + k K, G = D A_z^-1 D^T (kept: keptCompliance; A_z's
+// factorisation kept while its two weights are).
 Eigen::Matrix3d FullStructureSupport::setIterationWeights(double a, double c, double k) {
-  // A_z = a M + c (alpha M + beta K) + k K.
+  if (const Eigen::Matrix3d* G = keptCompliance(a, c, k)) return *G;
   const double wm = a + c * alpha_, wk = k + c * beta_;
-  const bool weightsChanged = !(wm == weight_m_ && wk == weight_k_);
-  if (!weightsChanged && G_pose_version_ == pose_version_) return G_;
-  if (weightsChanged) {
+  if (!(wm == weight_m_ && wk == weight_k_)) {
     A_ = wm * M_ + wk * K_;
     llt_.factorize(A_);
     if (llt_.info() != Eigen::Success) {
@@ -243,9 +247,7 @@ Eigen::Matrix3d FullStructureSupport::setIterationWeights(double a, double c, do
     weight_k_ = wk;
   }
   X_ = llt_.solve(Eigen::MatrixXd(D_.transpose()));
-  G_ = D_ * X_;
-  G_pose_version_ = pose_version_;
-  return G_;
+  return keepCompliance(a, c, k, D_ * X_);
 }
 
 double FullStructureSupport::energy(const Eigen::VectorXd& z, const Eigen::VectorXd& zd) const {

@@ -80,6 +80,11 @@ class StructureSupportBase : public RopeSupport {
   Eigen::MatrixXd modes_;                        ///< T = Phi (modal), empty for T = I
   int pose_version_ = 0;                         ///< bumped by setPose (D changed)
   double pose_theta_ = 0.0, pose_radius_ = 0.0;  ///< [rad], [m] of the last setPose
+  /// setIterationWeights' G = D A_z^-1 D^T where the weights (a, c, k) and the pose are those
+  /// it was computed for (a run's steps share them), else nullptr; keepCompliance records a new
+  /// one for the present pose and returns it.
+  const Eigen::Matrix3d* keptCompliance(double a, double c, double k) const;
+  const Eigen::Matrix3d& keepCompliance(double a, double c, double k, const Eigen::Matrix3d& G);
   Eigen::Vector3d r0_;
   Eigen::Matrix<double, 3, Eigen::Dynamic> D_, cab_, tip_;
   Eigen::VectorXd euler_, centrifugal_;  ///< T^T M r_theta, T^T M c (empty: loads off)
@@ -89,6 +94,14 @@ class StructureSupportBase : public RopeSupport {
   Eigen::SparseMatrix<double> patterns_;
   double external_scale_ = 1.0;
   double slew_rate_ = 0.0, slew_acceleration_ = 0.0;
+
+ private:
+  struct KeptCompliance {
+    double a = -1.0, c = -1.0, k = -1.0;
+    int pose_version = -1;
+    Eigen::Matrix3d G = Eigen::Matrix3d::Zero();
+  };
+  KeptCompliance kept_compliance_;
 };
 
 /// The free-DOF fields of the slewing frame's motion (see above): r_theta = [e_z x X; e_z] and
@@ -120,11 +133,8 @@ class ModalStructureSupport final : public StructureSupportBase {
   const Eigen::VectorXd& dampingTerms() const { return damping_; }
 
  private:
-  Eigen::VectorXd omega2_, damping_;                            ///< Omega^2, 2 zeta Omega
-  Eigen::VectorXd diagonal_;                                    ///< A_z (diagonal)
-  double weight_a_ = -1.0, weight_c_ = -1.0, weight_k_ = -1.0;  ///< A_z's weights, cached
-  int G_pose_version_ = -1;                                     ///< pose G_ was computed for
-  Eigen::Matrix3d G_ = Eigen::Matrix3d::Zero();
+  Eigen::VectorXd omega2_, damping_;  ///< Omega^2, 2 zeta Omega
+  Eigen::VectorXd diagonal_;          ///< A_z (diagonal)
 };
 
 class FullStructureSupport final : public StructureSupportBase {
@@ -145,10 +155,8 @@ class FullStructureSupport final : public StructureSupportBase {
  private:
   SparseMatrix M_, K_, A_;
   double alpha_ = 0.0, beta_ = 0.0;
-  double weight_m_ = -1.0, weight_k_ = -1.0;  ///< A_z = weight_m M + weight_k K, cached
-  int G_pose_version_ = -1;                   ///< pose G_ and X_ were computed for
-  Eigen::Matrix3d G_ = Eigen::Matrix3d::Zero();
-  Eigen::Matrix<double, Eigen::Dynamic, 3> X_;  ///< A_z^-1 D^T
+  double weight_m_ = -1.0, weight_k_ = -1.0;    ///< A_z = weight_m M + weight_k K, factorised
+  Eigen::Matrix<double, Eigen::Dynamic, 3> X_;  ///< A_z^-1 D^T, of the kept compliance
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> llt_;
 };
 
