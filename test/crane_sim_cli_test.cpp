@@ -826,3 +826,67 @@ TEST(CraneSimCli, RunPrintsTheUsageBlockBeforeTheSummary) {
     EXPECT_EQ(l[i].rfind("usage_hot_spot: name=", 0), 0u) << l[i];
   }
 }
+
+namespace {
+
+// The lines of a file, the CSV column `drop` (0-based; -1: none) taken out of each.
+std::vector<std::string> fileRows(const std::string& path, int drop = -1) {
+  std::ifstream in(path);
+  std::vector<std::string> rows;
+  for (std::string line; std::getline(in, line);) {
+    if (drop >= 0) {
+      std::vector<std::string> cells;
+      std::istringstream cs(line);
+      for (std::string c; std::getline(cs, c, ',');) cells.push_back(c);
+      cells.erase(cells.begin() + drop);
+      line.clear();
+      for (const std::string& c : cells) line += c + ",";
+    }
+    rows.push_back(line);
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST(CraneSimCli, RowsOfASpeculationTakenBackAreFullOrdersOwn) {
+  // Chrono's stress-free release on 20 elements: the reduced rope starts speculatively (its
+  // tension touches zero at each bounce), is taken back, hands back later and is taken back
+  // again, so every one of its 3000 steps is full order's in the end (docs/cli.md "Rows of a
+  // speculation"). Its rows, node rows, warnings and summary are then full order's own run's,
+  // digit for digit, but the full_order_steps column.
+  const std::string scene = std::string(CRANE_TWIN_SOURCE_DIR) +
+                            "/config/scenes/rope_pendulum_chrono.yaml --set duration=3 "
+                            "--set rope.elements=20 --set output_interval=0.01 --quiet";
+  std::map<std::string, Result> runs;
+  for (const char* model : {"full", "reduced"}) {
+    const std::string base = ::testing::TempDir() + "speculation_" + model;
+    runs[model] = run("run " + scene + " --set rope.model=" + model + " --out " + base +
+                      ".csv --nodes " + base + "_nodes.csv");
+    ASSERT_EQ(runs[model].status, 0) << runs[model].out;
+  }
+  const std::string summary = lines(runs["reduced"].out).back();
+  ASSERT_NE(summary.find(" taken_back=2 "), std::string::npos) << summary;
+  ASSERT_NE(summary.find(" full_order_steps=3000 "), std::string::npos) << summary;
+  const auto header = fileRows(::testing::TempDir() + "speculation_full.csv").front();
+  const int column = static_cast<int>(
+      std::count(header.begin(), header.begin() + header.find("full_order_steps"), ','));
+  const auto full = fileRows(::testing::TempDir() + "speculation_full.csv", column);
+  const auto reduced = fileRows(::testing::TempDir() + "speculation_reduced.csv", column);
+  ASSERT_EQ(full.size(), 302u);  // header, t = 0, 0.01, ..., 3
+  ASSERT_EQ(reduced.size(), full.size());
+  for (std::size_t i = 0; i < full.size(); ++i) ASSERT_EQ(reduced[i], full[i]) << "row " << i;
+  EXPECT_EQ(fileRows(::testing::TempDir() + "speculation_reduced_nodes.csv"),
+            fileRows(::testing::TempDir() + "speculation_full_nodes.csv"));
+  // What stderr and the summary say of the rows: warnings, lift-offs, the tension's peak.
+  const auto summaryTail = [](const std::string& line) {
+    return line.substr(line.find(" warnings_seen="),
+                       line.find(" energy_consistent_steps=") - line.find(" warnings_seen=")) +
+           line.substr(line.find(" lift_offs="),
+                       line.find(" basis_additions=") - line.find(" lift_offs="));
+  };
+  const std::string full_summary = lines(runs["full"].out).back();
+  EXPECT_EQ(summaryTail(summary), summaryTail(full_summary));
+  EXPECT_EQ(runs["reduced"].out.substr(0, runs["reduced"].out.find("summary:")),
+            runs["full"].out.substr(0, runs["full"].out.find("summary:")));
+}

@@ -11,6 +11,7 @@
 #include <functional>
 #include <random>
 
+#include "crane_twin/analysis/accuracy_sweep.hpp"
 #include "crane_twin/rope/swing_direction.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
 #include "crane_twin/simulation/invariant_reduced_simulation.hpp"
@@ -1152,6 +1153,57 @@ TEST(InvariantReduced, AMeasuredMotionKeepsTheSpeculativeHandBack) {
   std::printf("measured motion at a speculation: %ld taken back, %ld hand-overs in 3 s\n",
               red.handBacksTakenBack(), red.handOvers());
   EXPECT_EQ(red.handBacksTakenBack(), 0);
+}
+
+TEST(InvariantReduced, ATakeBackShowsItsReintegratedStepsToTheReplayObserver) {
+  // Chrono's release on 20 elements (3 s): its start speculates and is taken back, a later
+  // hand-back too, so every step is full order's in the end. The replay observer
+  // (SpeculativeRun) is called once at each take-back's checkpoint and after each of its
+  // re-integrated steps but the last, at those steps' times; a recording that drops what it
+  // sampled since the checkpoint and samples those steps instead (recordRun, as crane_sim run
+  // does, docs/cli.md "Rows of a speculation") holds full order's own run, to the last digit.
+  const CraneModel reduced =
+      withRope("rope_pendulum_chrono.yaml", {"rope.elements=20", "duration=3"}, "reduced");
+  const CraneModel full =
+      withRope("rope_pendulum_chrono.yaml", {"rope.elements=20", "duration=3"}, "full");
+  {
+    InvariantReducedSimulation sim(reduced);
+    std::vector<long> calls;
+    std::vector<double> times;
+    sim.setReplayObserver([&](long replayed_steps) {
+      calls.push_back(replayed_steps);
+      times.push_back(sim.time());
+    });
+    sim.initialize();
+    double checkpoint = sim.speculating() ? 0.0 : -1.0;
+    for (int k = 1; k <= 3000; ++k) {
+      const long taken_back = sim.handBacksTakenBack();
+      const std::size_t before = calls.size();
+      sim.step();
+      if (sim.handBacksTakenBack() > taken_back) {
+        ASSERT_GE(checkpoint, 0.0);
+        ASSERT_GT(calls.size(), before);
+        for (std::size_t i = before; i < calls.size(); ++i) {
+          EXPECT_EQ(calls[i], static_cast<long>(i - before));
+          EXPECT_NEAR(times[i], checkpoint + 1e-3 * calls[i], 1e-9);
+        }
+        EXPECT_NEAR(times.back() + 1e-3, sim.time(), 1e-9);  // the last step is step()'s own
+        checkpoint = -1.0;
+      } else {
+        EXPECT_EQ(calls.size(), before);
+      }
+      if (checkpoint < 0.0 && sim.speculating()) checkpoint = sim.time();
+    }
+    ASSERT_EQ(sim.handBacksTakenBack(), 2) << "the test asks for two take-backs";
+  }
+  const Trajectory a = recordRun(reduced, 0.01), b = recordRun(full, 0.01);
+  ASSERT_EQ(a.t.size(), 301u);
+  ASSERT_EQ(b.t.size(), a.t.size());
+  for (std::size_t i = 0; i < a.t.size(); ++i) {
+    ASSERT_EQ(a.t[i], b.t[i]);
+    ASSERT_EQ(a.payload[i], b.payload[i]) << "t = " << a.t[i];
+    ASSERT_EQ(a.nodes[i], b.nodes[i]) << "t = " << a.t[i];
+  }
 }
 
 namespace {

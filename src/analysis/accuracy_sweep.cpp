@@ -8,6 +8,7 @@
 
 #include "crane_twin/io/config_reader.hpp"
 #include "crane_twin/simulation/simulation.hpp"
+#include "crane_twin/simulation/simulation_capabilities.hpp"
 #include "crane_twin/simulation/subdomain_reduced_simulation.hpp"
 
 namespace crane_twin {
@@ -35,6 +36,36 @@ Trajectory recordRun(const CraneModel& model, double interval, double* wall_s, i
     for (int k = 0; k < sim->ropeNodes(); ++k) nodes[k] = sim->ropeNode(k);
     tr.nodes.push_back(std::move(nodes));
   };
+  // A speculation's samples (SpeculativeRun): where it is taken back, the samples from its
+  // checkpoint on are those of full order's re-integrated steps (docs/cli.md "Rows of a
+  // speculation"), as crane_sim run writes them.
+  SpeculativeRun* speculative = capabilityOf<SpeculativeRun>(*sim);
+  long checkpoint_step = -1;        // the open speculation's, -1: none
+  std::size_t checkpoint_size = 0;  // samples before it
+  const auto recordStep = [&](long k) {
+    if (k % every == 0) record();
+  };
+  const auto watch = [&](long k) {
+    if (!speculative) return;
+    if (checkpoint_step >= 0 && !speculative->speculating()) checkpoint_step = -1;
+    if (checkpoint_step < 0 && speculative->speculating()) {
+      checkpoint_step = k;
+      checkpoint_size = tr.t.size();
+    }
+  };
+  if (speculative) {
+    speculative->setReplayObserver([&](long replayed_steps) {
+      if (replayed_steps == 0) {
+        tr.t.resize(checkpoint_size);
+        tr.payload.resize(checkpoint_size);
+        tr.cab.resize(checkpoint_size);
+        tr.jib_tip.resize(checkpoint_size);
+        tr.nodes.resize(checkpoint_size);
+      }
+      recordStep(checkpoint_step + replayed_steps);
+    });
+  }
+  watch(0);
   record();
   const long steps = std::lround(sc.duration / sc.time_step);
   double wall = 0.0;
@@ -42,8 +73,10 @@ Trajectory recordRun(const CraneModel& model, double interval, double* wall_s, i
     const auto t0 = std::chrono::steady_clock::now();
     sim->step();
     wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (k % every == 0) record();
+    watch(k);
+    recordStep(k);
   }
+  if (speculative) speculative->setReplayObserver({});
   if (wall_s) *wall_s = wall;
   if (subdomains) *subdomains = sim->statistics().subdomains;
   if (mode_updates_s) *mode_updates_s = sim->statistics().mode_update_seconds;

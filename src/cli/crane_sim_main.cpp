@@ -8,7 +8,6 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,18 +15,15 @@
 #include "crane_twin/analysis/accuracy_sweep.hpp"
 #include "crane_twin/analysis/rainflow.hpp"
 #include "crane_twin/analysis/trajectory_compare.hpp"
-#include "crane_twin/analysis/usage_counter.hpp"
 #include "crane_twin/io/config_reader.hpp"
 #include "crane_twin/io/csv_columns.hpp"
 #include "crane_twin/simulation/crane_model.hpp"
 #include "crane_twin/simulation/crane_simulation.hpp"
-#include "crane_twin/simulation/crane_warnings.hpp"
 #include "crane_twin/simulation/invariant_reduced_simulation.hpp"
-#include "crane_twin/simulation/lift_off_monitor.hpp"
 #include "crane_twin/simulation/pendulum_crane_simulation.hpp"
 #include "crane_twin/simulation/simulation.hpp"
-#include "crane_twin/simulation/step_tension_peak.hpp"
 #include "crane_twin/structure/modal_cache.hpp"
+#include "run_recorder.hpp"
 
 namespace ct = crane_twin;
 
@@ -172,56 +168,34 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   const bool bar = !r.quiet && isatty(fileno(stdout)) && isatty(fileno(stderr));
   if (series) series << ct::seriesHeader(m) << "\n";
   if (nodes) nodes << "t,node,x,y,z\n";
-  // Physical warnings: each kind reported on stderr when first seen, with a count of
-  // the output rows that carried it at the end; the CSV carries them in every row.
-  std::map<int, long> warned;
-  ct::LiftOffMonitor lift_off;
-  ct::StepTensionPeak tension_peak;  // the steps' crests between the rows
-  double peak_tension = 0.0;         // the run's largest top tension, every step [N]
-  ct::UsageCounter usage(m);
-  auto emit = [&]() {
-    ct::SeriesValues v = sim->series();
-    const double peak = tension_peak.takeAtRow(v.rope_top_tension);
-    peak_tension = std::max(peak_tension, peak);
-    lift_off.observe(v, ct::staticTopTension(m, v.rope_length), peak);
-    ct::addStepPeakTensionWarnings(m, peak, v);
-    usage.observe(v, lift_off);
-    v.warnings |= lift_off.warningFor(sc.hoist_design_phi2);
-    if (series) ct::writeSeriesRow(series, v);
-    if (nodes) sim->writeNodeRows(nodes);
-    for (int bit = 1; bit <= ct::kLastWarning; bit <<= 1) {
-      if (!(v.warnings & bit)) continue;
-      if (warned[bit]++ == 0) {
-        if (bar) std::fprintf(stderr, "\n");
-        std::fprintf(stderr,
-                     "warning: t = %.3f s: %s (tension_ratio %.3f, load_chart_ratio %.3f)\n", v.t,
-                     ct::warningName(bit), v.tension_ratio, v.load_chart_ratio);
-      }
-    }
-  };
+  // The rows, physical warnings (each kind reported on stderr when first seen, with a count of
+  // the output rows that carried it at the end; the CSV carries them in every row), lift-offs,
+  // tension peaks and usage; a speculation's held back until it is kept or taken back.
   double wall = 0.0;  // the steps alone: no setup, no output
+  std::optional<ct::RunRecorder> recorder;
   try {
     sim->initialize();
-    emit();
+    recorder.emplace(m, *sim, series ? &series : nullptr, nodes ? &nodes : nullptr, every, bar);
+    recorder->recordStart();
     for (long k = 1; k <= steps; ++k) {
       const auto t0 = std::chrono::steady_clock::now();
       sim->step();
       wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      tension_peak.addStep(sim->topTension());
-      usage.observeStep(sim->hotSpotStresses());  // the stresses' crests between the rows
-      if (k % every == 0) emit();
+      recorder->recordStep(k);
       if (bar && (k % std::max(1L, steps / 100) == 0 || k == steps)) {
         std::fprintf(stderr, "\r[%-50s] %5.1f%%  t = %.2f s",
                      std::string(50 * k / steps, '#').c_str(), 100.0 * k / steps, sim->time());
       }
     }
   } catch (const ct::NumericalFailure& e) {
+    if (recorder) recorder->finish();
     if (bar) std::fprintf(stderr, "\n");
     std::cerr << "numerical failure: " << e.what() << "\n";
     return 1;
   }
+  recorder->finish();
   if (bar) std::fprintf(stderr, "\n");
-  for (const auto& [bit, rows] : warned) {
+  for (const auto& [bit, rows] : recorder->warned()) {
     std::fprintf(stderr, "warning: %s in %ld output rows\n", ct::warningName(bit), rows);
   }
   const ct::RunStatistics stats = sim->statistics();
@@ -233,12 +207,12 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
   // Warning counts: the bits seen (docs/cli.md) and, per bit, the output rows that carried it.
   int seen = 0;
   std::string rows_per_bit;
-  for (const auto& [bit, rows] : warned) {
+  for (const auto& [bit, rows] : recorder->warned()) {
     seen |= bit;
     rows_per_bit +=
         (rows_per_bit.empty() ? "" : ",") + std::to_string(bit) + ":" + std::to_string(rows);
   }
-  printUsage(usage.report());
+  printUsage(recorder->usage());
   std::printf(
       "summary: wall_s=%.3g sim_s=%g rtf=%.3g steps=%ld subdomains=%d mode_updates_s=%.3g "
       "hand_overs=%ld taken_back=%ld full_order_steps=%ld warnings_seen=%d warning_rows=%s "
@@ -247,8 +221,8 @@ int runRun(const SceneArgs& a, const RunArgs& r) {
       wall, simS, simS / wall, steps, stats.subdomains, stats.mode_update_seconds, stats.hand_overs,
       stats.hand_backs_taken_back, stats.full_order_steps, seen,
       rows_per_bit.empty() ? "none" : rows_per_bit.c_str(), stats.energy_consistent_steps,
-      stats.halved_steps, lift_off.liftOffs(), lift_off.factor(),
-      peak_tension / m.rope.breaking_force, stats.basis_additions);
+      stats.halved_steps, recorder->liftOff().liftOffs(), recorder->liftOff().factor(),
+      recorder->peakTension() / m.rope.breaking_force, stats.basis_additions);
   return 0;
 }
 

@@ -63,7 +63,10 @@ bool HandOverSimulation::takesBack(Cause c) const {
 void HandOverSimulation::takeBack(Cause c) {
   // Full order from the checkpoint over the speculative steps, each input given where it was
   // given (before the step after `step` speculative steps), to the reduced run's present.
+  // The run reads full order's state from here on, also for the observer (SpeculativeRun).
   full_.continueFrom(*checkpoint_);
+  full_order_ = true;
+  if (replay_observer_) replay_observer_(0);
   std::size_t next = 0;
   for (long k = 0; k < speculative_steps_; ++k) {
     for (; next < inputs_.size() && inputs_[next].step == k; ++next) {
@@ -72,6 +75,7 @@ void HandOverSimulation::takeBack(Cause c) {
     }
     full_.step();
     ++full_order_steps_;
+    if (replay_observer_ && k + 1 < speculative_steps_) replay_observer_(k + 1);
   }
   keepHandBack();  // (the checkpoint and inputs are spent)
   ++taken_back_;

@@ -27,7 +27,9 @@
 //    would hand over within speculation_window of it (any cause), the hand-back is taken back
 //    instead: full order re-integrates from the checkpoint to the present, replaying those
 //    inputs at their steps, and continues the full-order run as if it had never handed back
-//    (the rows already written stay the reduced rope's). Past the window, or at a measured
+//    (a caller that writes rows shows the re-integrated steps to its replay observer and
+//    replaces the speculation's rows by theirs, SpeculativeRun; a node's published messages
+//    stay as they went out). Past the window, or at a measured
 //    motion (setMotion), the hand-back is kept and the checkpoint dropped. A guarded hand-back
 //    (handBackGuarded: a reduced rope's after a snatch) keeps the same checkpoint but is taken
 //    back only for a slack episode, a failed step or (guardTakesBackAtTheIndicator) the error
@@ -42,6 +44,7 @@
 #include <vector>
 
 #include "crane_twin/simulation/crane_simulation.hpp"
+#include "crane_twin/simulation/simulation_capabilities.hpp"
 
 namespace crane_twin {
 
@@ -90,7 +93,7 @@ struct HandOverSettings {
   double speculation_window = 10.0;
 };
 
-class HandOverSimulation : public Simulation {
+class HandOverSimulation : public Simulation, public SpeculativeRun {
  public:
   /// Why a run went to full order (counted per cause).
   enum class Cause { start, slack, failure, indicator, fast_hoist, ground };
@@ -142,8 +145,12 @@ class HandOverSimulation : public Simulation {
   /// in one now, and whether that one rings towards slack (handBackIsSpeculative: taken back
   /// for any hand-over) rather than being guarded after a snatch (handBackGuarded: taken back
   /// for a slack episode or a failed step only).
-  long handBacksTakenBack() const { return taken_back_; }
-  bool speculating() const { return speculating_; }
+  long handBacksTakenBack() const override { return taken_back_; }
+  bool speculating() const override { return speculating_; }
+  /// SpeculativeRun: the observer of a take-back's re-integration (takeBack).
+  void setReplayObserver(ReplayObserver observer) override {
+    replay_observer_ = std::move(observer);
+  }
   bool speculationRingsTowardsSlack() const { return speculating_ && rings_towards_slack_; }
 
   /// The rope length being integrated [m] (the full rope's while at full order).
@@ -288,6 +295,7 @@ class HandOverSimulation : public Simulation {
   long speculative_steps_ = 0;        ///< reduced steps since the checkpoint
   std::vector<LoggedInput> inputs_;
   long taken_back_ = 0;
+  ReplayObserver replay_observer_;
 };
 
 }  // namespace crane_twin

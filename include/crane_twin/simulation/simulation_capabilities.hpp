@@ -8,8 +8,10 @@
 //   ContinuableRun         yes   yes                  no                    yes
 //   CorrectableMotion      yes   yes                  no                    no
 //   MeasuredWindInput      yes   yes                  no                    yes
+//   SpeculativeRun         no    yes                  yes (never speculates) no
 #pragma once
 #include <Eigen/Dense>
+#include <functional>
 
 #include "crane_twin/io/input_error.hpp"
 #include "crane_twin/simulation/simulation.hpp"
@@ -54,6 +56,28 @@ class MeasuredWindInput {
   static constexpr const char* kWhat =
       "a measured wind needs rope.model full, pendulum or reduced (rope.reduction: invariant); "
       "the subdomain reduced rope takes no wind";
+};
+
+/// A run whose latest steps a later step may replace: a reduced rope's speculative hand-back
+/// (docs/model.md "Hand-over to full order") is taken back where the run would hand over within
+/// its window, and full order re-integrates every step since its checkpoint. A caller that writes
+/// rows holds back those of an open speculation (speculating) and, where it is taken back,
+/// writes the re-integrated steps' rows instead (setReplayObserver; docs/cli.md "Rows of a
+/// speculation").
+class SpeculativeRun {
+ public:
+  virtual ~SpeculativeRun() = default;
+  /// A speculation is open: the state since its checkpoint may still be replaced.
+  virtual bool speculating() const = 0;
+  /// Speculations taken back so far.
+  virtual long handBacksTakenBack() const = 0;
+  /// Called within the step() that takes a speculation back: first with the run at the
+  /// checkpoint's state (replayed_steps 0: the step the speculation began at, or the start), then
+  /// after each re-integrated step but the last (replayed_steps 1 .. n - 1), which is the step()
+  /// under way itself. The run reads full order's state throughout (series, topTension,
+  /// hotSpotStresses, nodes). An empty observer: none.
+  using ReplayObserver = std::function<void(long replayed_steps)>;
+  virtual void setReplayObserver(ReplayObserver observer) = 0;
 };
 
 /// The capability C of `sim`, or nullptr where its model has none.
