@@ -106,16 +106,17 @@ TEST(ContinueFrom, ACopyOfAnOffCentreLandedRunTakesItsBasis) {
 }
 
 TEST(SimulationCapabilities, EachRopeModelHasThoseItsTableNames) {
-  // simulation_capabilities.hpp's table: continue, correct the motion, take a measured wind.
+  // simulation_capabilities.hpp's table: continue, correct the motion, take a measured wind,
+  // speculate.
   struct Row {
     std::vector<std::string> sets;
-    bool continues, corrects, takes_wind;
+    bool continues, corrects, takes_wind, speculates;
   };
   const std::vector<Row> rows = {
-      {{"rope.model=full"}, true, true, true},
-      {{"rope.model=reduced"}, true, true, true},
-      {{"rope.model=reduced", "rope.reduction=subdomains"}, false, false, false},
-      {{"rope.model=pendulum"}, true, false, true},
+      {{"rope.model=full"}, true, true, true, false},
+      {{"rope.model=reduced"}, true, true, true, true},
+      {{"rope.model=reduced", "rope.reduction=subdomains"}, false, false, false, true},
+      {{"rope.model=pendulum"}, true, false, true, false},
   };
   for (const Row& r : rows) {
     std::unique_ptr<Simulation> sim = makeSimulation(live(r.sets));
@@ -123,6 +124,7 @@ TEST(SimulationCapabilities, EachRopeModelHasThoseItsTableNames) {
     EXPECT_EQ(capabilityOf<ContinuableRun>(*sim) != nullptr, r.continues) << what;
     EXPECT_EQ(capabilityOf<CorrectableMotion>(*sim) != nullptr, r.corrects) << what;
     EXPECT_EQ(capabilityOf<MeasuredWindInput>(*sim) != nullptr, r.takes_wind) << what;
+    EXPECT_EQ(capabilityOf<SpeculativeRun>(*sim) != nullptr, r.speculates) << what;
     if (!r.continues) {
       // Asked for where it is missing: the message names the models that have it.
       try {
