@@ -8,7 +8,7 @@
 
 #include "crane_twin/io/config_reader.hpp"
 #include "crane_twin/simulation/simulation.hpp"
-#include "crane_twin/simulation/simulation_capabilities.hpp"
+#include "crane_twin/simulation/speculation_follower.hpp"
 #include "crane_twin/simulation/subdomain_reduced_simulation.hpp"
 
 namespace crane_twin {
@@ -36,47 +36,32 @@ Trajectory recordRun(const CraneModel& model, double interval, double* wall_s, i
     for (int k = 0; k < sim->ropeNodes(); ++k) nodes[k] = sim->ropeNode(k);
     tr.nodes.push_back(std::move(nodes));
   };
-  // A speculation's samples (SpeculativeRun): where it is taken back, the samples from its
+  // A speculation's samples (SpeculationFollower): where it is taken back, the samples from its
   // checkpoint on are those of full order's re-integrated steps (docs/cli.md "Rows of a
   // speculation"), as crane_sim run writes them.
-  SpeculativeRun* speculative = capabilityOf<SpeculativeRun>(*sim);
-  long checkpoint_step = -1;        // the open speculation's, -1: none
-  std::size_t checkpoint_size = 0;  // samples before it
-  const auto recordStep = [&](long k) {
-    if (k % every == 0) record();
+  std::size_t held_from = 0;  // samples before the open speculation
+  const auto drop = [&tr, &held_from] {
+    tr.t.resize(held_from);
+    tr.payload.resize(held_from);
+    tr.cab.resize(held_from);
+    tr.jib_tip.resize(held_from);
+    tr.nodes.resize(held_from);
   };
-  const auto watch = [&](long k) {
-    if (!speculative) return;
-    if (checkpoint_step >= 0 && !speculative->speculating()) checkpoint_step = -1;
-    if (checkpoint_step < 0 && speculative->speculating()) {
-      checkpoint_step = k;
-      checkpoint_size = tr.t.size();
-    }
-  };
-  if (speculative) {
-    speculative->setReplayObserver([&](long replayed_steps) {
-      if (replayed_steps == 0) {
-        tr.t.resize(checkpoint_size);
-        tr.payload.resize(checkpoint_size);
-        tr.cab.resize(checkpoint_size);
-        tr.jib_tip.resize(checkpoint_size);
-        tr.nodes.resize(checkpoint_size);
-      }
-      recordStep(checkpoint_step + replayed_steps);
-    });
-  }
-  watch(0);
-  record();
+  SpeculationFollower follower(*sim, {[&](long k) {
+                                        if (k % every == 0) record();
+                                      },
+                                      [&] { held_from = tr.t.size(); },
+                                      {},
+                                      drop});
+  follower.start();
   const long steps = std::lround(sc.duration / sc.time_step);
   double wall = 0.0;
   for (long k = 1; k <= steps; ++k) {
     const auto t0 = std::chrono::steady_clock::now();
     sim->step();
     wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    watch(k);
-    recordStep(k);
+    follower.step(k);
   }
-  if (speculative) speculative->setReplayObserver({});
   if (wall_s) *wall_s = wall;
   if (subdomains) *subdomains = sim->statistics().subdomains;
   if (mode_updates_s) *mode_updates_s = sim->statistics().mode_update_seconds;

@@ -11,63 +11,23 @@ RunRecorder::RunRecorder(const CraneModel& model, Simulation& sim, std::ostream*
                          std::ostream* nodes, long every, bool progress_bar)
     : model_(model),
       sim_(sim),
-      speculative_(capabilityOf<SpeculativeRun>(sim)),
       series_(series),
       nodes_(nodes),
       every_(std::max(1L, every)),
       progress_bar_(progress_bar),
-      monitors_{{}, LiftOffMonitor(), StepTensionPeak(), 0.0, UsageCounter(model)} {
-  if (speculative_) {
-    speculative_->setReplayObserver([this](long replayed_steps) { replayed(replayed_steps); });
-    taken_back_ = speculative_->handBacksTakenBack();
-  }
-}
+      monitors_{{}, LiftOffMonitor(), StepTensionPeak(), 0.0, UsageCounter(model)},
+      follower_(sim, {[this](long k) { record(k); }, [this] { hold(); }, [this] { release(); },
+                      [this] { drop(); }}) {}
 
-RunRecorder::~RunRecorder() {
-  if (speculative_) speculative_->setReplayObserver({});
-}
+void RunRecorder::hold() { at_checkpoint_ = std::make_unique<Monitors>(monitors_); }
 
-void RunRecorder::recordStart() {
-  // A start that speculates (a release ringing towards slack): its checkpoint is the start.
-  if (speculative_ && speculative_->speculating()) {
-    at_checkpoint_ = std::make_unique<Monitors>(monitors_);
-    checkpoint_step_ = 0;
-  }
-  record(0);
-}
-
-void RunRecorder::recordStep(long k) {
-  if (speculative_) {
-    const long taken_back = speculative_->handBacksTakenBack();
-    if (taken_back != taken_back_) {
-      // replayed() has recorded the steps from the checkpoint up to this one's start.
-      taken_back_ = taken_back;
-    } else if (at_checkpoint_ && !speculative_->speculating()) {
-      release();  // kept
-    }
-    // A hand-back in this step: the checkpoint is this step's full-order state.
-    if (!at_checkpoint_ && speculative_->speculating()) {
-      at_checkpoint_ = std::make_unique<Monitors>(monitors_);
-      checkpoint_step_ = k;
-    }
-  }
-  record(k);
-}
-
-void RunRecorder::finish() {
-  if (at_checkpoint_) release();
-}
-
-void RunRecorder::replayed(long replayed_steps) {
-  if (replayed_steps == 0) {
-    // Taken back: the held rows and warnings go, the monitors return to the checkpoint.
-    if (at_checkpoint_) monitors_ = *at_checkpoint_;
-    at_checkpoint_.reset();
-    held_series_.str("");
-    held_nodes_.str("");
-    held_messages_.clear();
-  }
-  record(checkpoint_step_ + replayed_steps);
+void RunRecorder::drop() {
+  // The held rows and warnings go, the monitors return to the checkpoint.
+  if (at_checkpoint_) monitors_ = *at_checkpoint_;
+  at_checkpoint_.reset();
+  held_series_.str("");
+  held_nodes_.str("");
+  held_messages_.clear();
 }
 
 void RunRecorder::record(long k) {
