@@ -10,6 +10,11 @@
 #   REFINE=8 scripts/slack_and_snatch.sh   (one more column, about 8 minutes more: the tension-only
 #                                           full run at an eighth of the scene's step, its payload /
 #                                           rope RMS distance from the run at the scene's step)
+#   SPREAD=1e-6 scripts/slack_and_snatch.sh (one more column, about 2 minutes more: the tension-only
+#                                           full run with its start's swing turned SPREAD deg more
+#                                           (1e-6 deg moves a payload on 60 m by 1 um), its payload /
+#                                           rope RMS distance from the run as given: how far full
+#                                           order parts from itself after a perturbation at round-off)
 # CRANE_SIM overrides the binary (default build/core/crane_sim).
 set -euo pipefail
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -36,13 +41,19 @@ if [ -n "$REFINE" ] && ! [[ "$REFINE" =~ ^[1-9][0-9]*$ && "$REFINE" -gt 1 ]]; th
   echo "REFINE must be an integer above 1 (the step's divisor), got '$REFINE'" >&2
   exit 2
 fi
+SPREAD="${SPREAD:-}"
+if [ -n "$SPREAD" ] && ! awk -v d="$SPREAD" 'BEGIN {exit !(d + 0 > 0 && d + 0 < 1)}'; then
+  echo "SPREAD must be a swing angle in (0, 1) deg, got '$SPREAD'" >&2
+  exit 2
+fi
 compare() {  # a b -> "payload / rope RMS"
   "$SIM" compare "$OUT/$1.csv" "$OUT/$2.csv" --nodes-a "$OUT/$1_n.csv" --nodes-b "$OUT/$2_n.csv" |
     awk -F, '/^payload_error_max/ {p = $2} /^rope_rms_max/ {r = $2} END {printf "%.2g / %.2g", p, r}'
 }
-row() {  # label scene [--set ...]
-  local label="$1" scene="$2" v
-  shift 2
+row() {  # label scene swing_deg [--set ...]
+  local label="$1" scene="$2" swing="$3" v
+  shift 3
+  set -- --set initial.swing_deg="$swing" "$@"
   for v in full symmetric reduced; do
     local sets=(--set rope.model=full)
     [ "$v" = symmetric ] && sets+=(--set rope.tension_only=false)
@@ -61,15 +72,23 @@ row() {  # label scene [--set ...]
       echo "exit=$?" >> "$OUT/refined.log"
     refined=" $(compare full refined) |"
   fi
+  local spread=""
+  if [ -n "$SPREAD" ]; then
+    "$SIM" run "$C/$scene.yaml" "$@" --set rope.model=full \
+      --set initial.swing_deg="$(awk -v a="$swing" -v d="$SPREAD" 'BEGIN {printf "%.12g", a + d}')" \
+      --out "$OUT/spread.csv" --nodes "$OUT/spread_n.csv" --quiet > "$OUT/spread.log" 2>&1 ||
+      echo "exit=$?" >> "$OUT/spread.log"
+    spread=" $(compare spread full) |"
+  fi
   local wf ws
   wf=$(summary full wall_s)
   ws=$(summary symmetric wall_s)
-  printf '| %s | %s (%s, %s, %s) | %s | %s | %s (%s, %s, %s) | %s | %s |%s\n' "$label" "$wf" \
+  printf '| %s | %s (%s, %s, %s) | %s | %s | %s (%s, %s, %s) | %s | %s |%s%s\n' "$label" "$wf" \
     "$(summary full energy_consistent_steps)" "$(summary full halved_steps)" "$(rise full)" "$ws" \
     "$(awk -v a="$wf" -v b="$ws" 'BEGIN{if (b > 0) printf "%.2f", a / b}')" \
     "$(summary reduced wall_s)" "$(taken_back reduced)" \
     "$(summary reduced full_order_steps)" "$(rise reduced)" "$(compare reduced full)" \
-    "$(compare symmetric full | cut -d' ' -f1)" "$refined"
+    "$(compare symmetric full | cut -d' ' -f1)" "$refined" "$spread"
 }
 
 head="| scene | tension-only full: wall s (e-c steps, halved, rise) | symmetric full wall s | ratio | default reduced: wall s (hand-overs, full-order steps, rise) | reduced payload / rope RMS error m | symmetric vs tension-only payload m |"
@@ -78,17 +97,21 @@ if [ -n "$REFINE" ]; then
   head+=" tension-only full at 1/$REFINE of the step vs full: payload / rope RMS m |"
   rule+=" --- |"
 fi
+if [ -n "$SPREAD" ]; then
+  head+=" tension-only full, start's swing $SPREAD deg more, vs full: payload / rope RMS m |"
+  rule+=" --- |"
+fi
 echo "$head"
 echo "$rule"
 row '`rope_pendulum_chrono` (stress-free release, 60 m, 3.6 t, 120 el, 1 ms, 20 s)' \
-  rope_pendulum_chrono
-row '60 deg release, 3.6 t on 60 m from an anchor, 120 el, 1 ms, 20 s' rope_pendulum_chrono \
-  --set initial.mode=equilibrium --set initial.swing_deg=60
-row '`hard_swing_60deg` (T8036, 60 deg release, 20 s)' hard_swing_60deg
-row '40 deg release on the T8036 (`t8036_combination1`, 20 s)' t8036_combination1 \
-  --set initial.swing_deg=40 --set duration=20
+  rope_pendulum_chrono 2.3
+row '60 deg release, 3.6 t on 60 m from an anchor, 120 el, 1 ms, 20 s' rope_pendulum_chrono 60 \
+  --set initial.mode=equilibrium
+row '`hard_swing_60deg` (T8036, 60 deg release, 20 s)' hard_swing_60deg 60
+row '40 deg release on the T8036 (`t8036_combination1`, 20 s)' t8036_combination1 40 \
+  --set duration=20
 row '12.5 t released stress-free from a rigid anchor (`hard_stress_free_heavy`, rigid structure, 20 s)' \
-  hard_stress_free_heavy --set structure.model=rigid --set duration=20
-row '`hard_slack_throw` (combination 2, 12.5 t thrown up at 3 m/s, 10 s)' hard_slack_throw
+  hard_stress_free_heavy 0 --set structure.model=rigid --set duration=20
+row '`hard_slack_throw` (combination 2, 12.5 t thrown up at 3 m/s, 10 s)' hard_slack_throw 0
 row 'falling rope (60 m, no payload, released horizontal, 120 el, 0.5 ms, 5 s)' \
-  hard_falling_rope --set rope.elements=120 --set time_step=0.0005 --set duration=5
+  hard_falling_rope 90 --set rope.elements=120 --set time_step=0.0005 --set duration=5
