@@ -8,7 +8,7 @@ CORE_PKGS=(
   build-essential cmake pkg-config
   libeigen3-dev libsuitesparse-dev libarpack2-dev liblapack-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev libboost-dev
-  parallel python3-yaml clang-format
+  parallel python3-yaml python3-numpy clang-format
 )
 ROS_PKGS=(
   catkin ros-core-dev ros-message-generation ros-std-msgs ros-sensor-msgs
