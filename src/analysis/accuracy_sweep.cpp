@@ -40,19 +40,12 @@ Trajectory recordRun(const CraneModel& model, double interval, double* wall_s, i
   // checkpoint on are those of full order's re-integrated steps (docs/cli.md "Rows of a
   // speculation"), as crane_sim run writes them.
   std::size_t held_from = 0;  // samples before the open speculation
-  const auto drop = [&tr, &held_from] {
-    tr.t.resize(held_from);
-    tr.payload.resize(held_from);
-    tr.cab.resize(held_from);
-    tr.jib_tip.resize(held_from);
-    tr.nodes.resize(held_from);
-  };
   SpeculationFollower follower(*sim, {[&](long k) {
                                         if (k % every == 0) record();
                                       },
                                       [&] { held_from = tr.t.size(); },
                                       {},
-                                      drop});
+                                      [&] { tr.keepFirst(held_from); }});
   follower.start();
   const long steps = std::lround(sc.duration / sc.time_step);
   double wall = 0.0;

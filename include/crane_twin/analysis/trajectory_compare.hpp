@@ -18,6 +18,20 @@ struct Trajectory {
   std::vector<double> tension;                      ///< rope top tension [N]
   std::vector<std::vector<Eigen::Vector3d>> nodes;  ///< per output time, every rope node
   double rope_length = 0.0;                         ///< hanging length at t = 0 [m]
+
+  /// Keeps the first n output times of every series that has more (a series not recorded stays
+  /// empty).
+  void keepFirst(std::size_t n) {
+    const auto shrink = [n](auto& series) {
+      if (series.size() > n) series.resize(n);
+    };
+    shrink(t);
+    shrink(payload);
+    shrink(cab);
+    shrink(jib_tip);
+    shrink(tension);
+    shrink(nodes);
+  }
 };
 
 struct ErrorMetrics {
