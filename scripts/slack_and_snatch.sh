@@ -50,6 +50,12 @@ compare() {  # a b -> "payload / rope RMS"
   "$SIM" compare "$OUT/$1.csv" "$OUT/$2.csv" --nodes-a "$OUT/$1_n.csv" --nodes-b "$OUT/$2_n.csv" |
     awk -F, '/^payload_error_max/ {p = $2} /^rope_rms_max/ {r = $2} END {printf "%.2g / %.2g", p, r}'
 }
+run_as() {  # name scene [--set ...]: one run into $OUT/name.csv, name_n.csv and name.log
+  local name="$1" scene="$2"
+  shift 2
+  "$SIM" run "$C/$scene.yaml" "$@" --out "$OUT/$name.csv" --nodes "$OUT/${name}_n.csv" \
+    --quiet > "$OUT/$name.log" 2>&1 || echo "exit=$?" >> "$OUT/$name.log"
+}
 row() {  # label scene swing_deg [--set ...]
   local label="$1" scene="$2" swing="$3" v
   shift 3
@@ -58,8 +64,7 @@ row() {  # label scene swing_deg [--set ...]
     local sets=(--set rope.model=full)
     [ "$v" = symmetric ] && sets+=(--set rope.tension_only=false)
     [ "$v" = reduced ] && sets=(--set rope.model=reduced)
-    "$SIM" run "$C/$scene.yaml" "$@" "${sets[@]}" --out "$OUT/$v.csv" --nodes "$OUT/${v}_n.csv" \
-      --quiet > "$OUT/$v.log" 2>&1 || echo "exit=$?" >> "$OUT/$v.log"
+    run_as "$v" "$scene" "$@" "${sets[@]}"
   done
   local refined=""
   if [ -n "$REFINE" ]; then
@@ -67,17 +72,13 @@ row() {  # label scene swing_deg [--set ...]
     # (the full run's own step: its simulated time over its steps)
     h=$(awk -v t="$(summary full sim_s)" -v k="$(summary full steps)" -v n="$REFINE" \
       'BEGIN {printf "%.10g", t / k / n}')
-    "$SIM" run "$C/$scene.yaml" "$@" --set rope.model=full --set time_step="$h" \
-      --out "$OUT/refined.csv" --nodes "$OUT/refined_n.csv" --quiet > "$OUT/refined.log" 2>&1 ||
-      echo "exit=$?" >> "$OUT/refined.log"
+    run_as refined "$scene" "$@" --set rope.model=full --set time_step="$h"
     refined=" $(compare full refined) |"
   fi
   local spread=""
   if [ -n "$SPREAD" ]; then
-    "$SIM" run "$C/$scene.yaml" "$@" --set rope.model=full \
-      --set initial.swing_deg="$(awk -v a="$swing" -v d="$SPREAD" 'BEGIN {printf "%.12g", a + d}')" \
-      --out "$OUT/spread.csv" --nodes "$OUT/spread_n.csv" --quiet > "$OUT/spread.log" 2>&1 ||
-      echo "exit=$?" >> "$OUT/spread.log"
+    run_as spread "$scene" "$@" --set rope.model=full \
+      --set initial.swing_deg="$(awk -v a="$swing" -v d="$SPREAD" 'BEGIN {printf "%.12g", a + d}')"
     spread=" $(compare spread full) |"
   fi
   local wf ws
