@@ -17,15 +17,15 @@ SpeculationFollower::~SpeculationFollower() {
 
 void SpeculationFollower::step(long k) {
   // (a take-back within this step has closed the speculation already: replayed)
-  if (holding_ && !speculative_->speculating()) {
-    holding_ = false;
-    call(recording_.keep);
-  }
+  if (holding_ && !speculative_->speculating()) keepHeld();
   follow(k);
 }
 
 void SpeculationFollower::finish() {
-  if (!holding_) return;
+  if (holding_) keepHeld();
+}
+
+void SpeculationFollower::keepHeld() {
   holding_ = false;
   call(recording_.keep);
 }

@@ -45,6 +45,8 @@ class SpeculationFollower {
   void follow(long k);
   // Within the step() that takes the speculation back (SpeculativeRun::ReplayObserver).
   void replayed(long replayed_steps);
+  // The open speculation is kept: what was held stands.
+  void keepHeld();
   static void call(const std::function<void()>& f) {
     if (f) f();
   }
